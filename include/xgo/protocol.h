@@ -1,0 +1,130 @@
+/*
+ * xgo/protocol.h - the XGO serial frame: constants, encoder and an
+ * incremental, self-resynchronising parser.
+ *
+ * Wire format (spec + errata in docs/protocol.md):
+ *
+ *   0x55 0x00 | LEN | TYPE | ADDR | DATA[n] | SUM | 0x00 0xAA
+ *
+ *   LEN = n + 8 (every byte of the frame), SUM = ~(LEN + TYPE + ADDR + DATA...).
+ *   Host -> board: TYPE 0x00 write (0x01 from older hosts), 0x02 read with one
+ *   data byte, the byte count. Board -> host: TYPE 0x12 read reply.
+ *
+ * The parser never trusts its input: every frame is validated whole before the
+ * sink sees it, and after any rejection the bytes already consumed are
+ * rescanned for the next header, so a good frame hiding behind garbage is
+ * still found. Bad input is expected, so it is counted, never asserted.
+ *
+ * Portable: no OS calls, no heap, no globals; all state is in xgo_parser_t.
+ */
+#ifndef XGO_PROTOCOL_H
+#define XGO_PROTOCOL_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define XGO_FRAME_HEAD0 0x55u
+#define XGO_FRAME_HEAD1 0x00u
+#define XGO_FRAME_TAIL0 0x00u
+#define XGO_FRAME_TAIL1 0xAAu
+
+/* header(2) + LEN + TYPE + ADDR + SUM + tail(2) */
+#define XGO_FRAME_OVERHEAD 8u
+#define XGO_FRAME_MAX_LEN 255u
+#define XGO_FRAME_MAX_DATA (XGO_FRAME_MAX_LEN - XGO_FRAME_OVERHEAD) /* 247 */
+#define XGO_READ_REQUEST_LEN 9u
+
+#define XGO_TYPE_WRITE 0x00u
+#define XGO_TYPE_WRITE_LEGACY 0x01u /* older vendor libraries and the ROS driver */
+#define XGO_TYPE_READ 0x02u
+#define XGO_TYPE_READ_REPLY 0x12u
+
+/* Default mid-frame silence after which a partial frame is abandoned. */
+#define XGO_PARSER_DEFAULT_TIMEOUT_MS 20u
+
+/* A validated frame. `data` points into the parser's buffer and is valid only
+ * during the sink callback. For a read request data[0] is the byte count. */
+typedef struct xgo_frame_s {
+    uint8_t type;
+    uint8_t addr;
+    uint8_t len;         /* number of data bytes, 1..247 */
+    const uint8_t *data;
+} xgo_frame_t;
+
+/* Why input was dropped. The first group is the parser's; the rest are
+ * decided later (register file, board) but share one enum for tracing. */
+typedef enum xgo_drop_reason_e {
+    XGO_DROP_NONE = 0,
+    XGO_DROP_BAD_CHECKSUM,
+    XGO_DROP_BAD_TAIL,
+    XGO_DROP_BAD_LENGTH,
+    XGO_DROP_BAD_TYPE,
+    XGO_DROP_BAD_RANGE,   /* ADDR + n > 256, or read count 0 or > 247 */
+    XGO_DROP_TIMEOUT,     /* partial frame abandoned after silence */
+    XGO_DROP_READ_ONLY,   /* write touches a read-only register */
+    XGO_DROP_BAD_VALUE,   /* write value outside the register's valid set */
+    XGO_DROP_TX_OVERFLOW, /* reply did not fit the transmit buffer */
+    XGO_DROP_REASON_COUNT
+} xgo_drop_reason_t;
+
+/* Short lower-case name ("bad checksum", ...). Never NULL. */
+const char *xgo_drop_reason_name(xgo_drop_reason_t reason);
+
+typedef struct xgo_parser_stats_s {
+    uint32_t frames_ok;
+    uint32_t bad_checksum;
+    uint32_t bad_tail;
+    uint32_t bad_length;
+    uint32_t bad_type;
+    uint32_t bad_range;
+    uint32_t bytes_discarded; /* every byte not delivered inside an accepted frame */
+    uint32_t timeouts;
+} xgo_parser_stats_t;
+
+/* Callbacks; any may be NULL. `on_drop` sees the bytes of the rejected
+ * candidate (for a timeout: all bytes that were pending). */
+typedef struct xgo_parser_sink_s {
+    void (*on_frame)(void *ctx, const xgo_frame_t *frame);
+    void (*on_drop)(void *ctx, xgo_drop_reason_t reason, const uint8_t *bytes, size_t n);
+    void *ctx;
+} xgo_parser_sink_t;
+
+typedef struct xgo_parser_s {
+    uint8_t buf[XGO_FRAME_MAX_LEN];
+    uint16_t end;        /* bytes held */
+    uint16_t checked;    /* prefix of buf already validated as a frame candidate */
+    uint32_t last_rx_ms; /* time of the last byte fed */
+    uint32_t timeout_ms; /* 0 disables the silence timeout */
+    xgo_parser_sink_t sink;
+    xgo_parser_stats_t stats;
+} xgo_parser_t;
+
+void xgo_parser_init(xgo_parser_t *p, const xgo_parser_sink_t *sink, uint32_t timeout_ms);
+
+/* Feed bytes that arrived at time now_ms (any clock in ms, wrap-safe). First
+ * applies the silence timeout relative to the previous byte. */
+void xgo_parser_feed(xgo_parser_t *p, const uint8_t *bytes, size_t n, uint32_t now_ms);
+
+/* Apply the silence timeout without new bytes (call periodically). */
+void xgo_parser_poll(xgo_parser_t *p, uint32_t now_ms);
+
+/* Bytes currently held as a partial frame. */
+size_t xgo_parser_pending(const xgo_parser_t *p);
+
+/* Checksum over LEN, TYPE, ADDR and data, as the wire carries it. */
+uint8_t xgo_frame_checksum(uint8_t len, uint8_t type, uint8_t addr, const uint8_t *data, size_t n);
+
+/* Encode one frame into out. Returns the frame size (n + 8), or 0 when n is 0,
+ * n > 247 or out_size is too small (nothing written then). */
+size_t xgo_frame_encode(uint8_t type, uint8_t addr, const uint8_t *data, size_t n,
+                        uint8_t *out, size_t out_size);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* XGO_PROTOCOL_H */

@@ -1,0 +1,213 @@
+/*
+ * xgo/regs.h - the board's 256-byte register file (the spec's MemTable).
+ *
+ * One descriptor per documented register (XGO_REG_LIST below) gives its
+ * address, width, host access, initial value and valid set. The file is a flat
+ * 256-byte image plus three computed views that a flat array cannot give:
+ *   - 0x07 firmware string: a read that starts at 0x07 returns the 10-byte
+ *     string, although 0x09 on its own is the gait type register;
+ *   - 0x62..0x64 roll/pitch/yaw: a read of 4+ bytes starting at one of them
+ *     returns that angle as float32 little-endian degrees (built with integer
+ *     arithmetic), a shorter read the one-byte encoding (docs/registers.md);
+ *   - 0xD0..0xFF diagnostic counters, uint32 little-endian.
+ *
+ * A write is validated whole before anything changes (docs/decisions.md).
+ * Portable: no OS calls, no heap, no globals, no floating point.
+ */
+#ifndef XGO_REGS_H
+#define XGO_REGS_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "xgo/protocol.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define XGO_REG_COUNT 256u
+
+/* Host access. R: writes rejected. W and RW: writable; W registers read back
+ * their stored value (the real board's MemTable is a flat array). */
+#define XGO_ACCESS_R 1u
+#define XGO_ACCESS_W 2u
+#define XGO_ACCESS_RW 3u
+
+/* Flags */
+#define XGO_REGF_AUTO_CLEAR 0x01u  /* the board acts on a write, then clears it to 0 */
+#define XGO_REGF_COMPUTED 0x02u    /* value produced by the board on read */
+#define XGO_REGF_NONVOLATILE 0x04u /* survives action 255 (reset) */
+
+/* Valid sets */
+typedef enum xgo_valid_e {
+    XGO_VALID_ANY = 0,
+    XGO_VALID_RANGE,  /* lo..hi inclusive */
+    XGO_VALID_UNLOAD, /* 0x00, 0x01, 0x11..0x14, 0x21..0x24 */
+    XGO_VALID_ACTION, /* 0..24, 255 */
+    XGO_VALID_ASCII   /* printable ASCII 0x20..0x7E */
+} xgo_valid_t;
+
+/*   X(ID, address, width, access, flags, initial, valid, lo, hi, "name")
+ * Table order matters only where widths overlap: gait_type (0x09) comes before
+ * the 10-byte firmware window (0x07..0x10) so 0x09 on its own is gait_type. */
+#define XGO_REG_LIST(X)                                                                 \
+    X(MODE, 0x00, 1, R, 0, 0x00, ANY, 0, 0, "mode")                                     \
+    X(BATTERY, 0x01, 1, R, 0, 100, ANY, 0, 0, "battery")                                \
+    X(VERSION, 0x02, 1, R, 0, 0x00, ANY, 0, 0, "version")                               \
+    X(PERFORM, 0x03, 1, W, 0, 0x00, RANGE, 0, 1, "perform")                             \
+    X(CALIBRATION, 0x04, 1, W, 0, 0x00, RANGE, 0, 1, "calibration")                     \
+    X(GAIT_TYPE, 0x09, 1, RW, 0, 0x00, RANGE, 0, 3, "gait_type")                        \
+    X(FIRMWARE, 0x07, 10, R, COMPUTED, 0x00, ANY, 0, 0, "firmware")                     \
+    X(BT_NAME, 0x13, 10, W, NONVOLATILE, 0x00, ASCII, 0, 0, "bt_name")                  \
+    X(UNLOAD, 0x20, 1, RW, 0, 0x00, UNLOAD, 0, 0, "unload")                             \
+    X(SET_ZERO, 0x21, 1, W, AUTO_CLEAR, 0x00, RANGE, 0, 1, "set_zero")                  \
+    X(VX, 0x30, 1, RW, 0, 0x80, ANY, 0, 0, "vx")                                        \
+    X(VY, 0x31, 1, RW, 0, 0x80, ANY, 0, 0, "vy")                                        \
+    X(VYAW, 0x32, 1, RW, 0, 0x80, ANY, 0, 0, "vyaw")                                    \
+    X(BODY_X, 0x33, 1, RW, 0, 0x80, ANY, 0, 0, "body_x")                                \
+    X(BODY_Y, 0x34, 1, RW, 0, 0x80, ANY, 0, 0, "body_y")                                \
+    X(BODY_Z, 0x35, 1, RW, 0, 0x80, ANY, 0, 0, "body_z")                                \
+    X(BODY_ROLL, 0x36, 1, RW, 0, 0x80, ANY, 0, 0, "body_roll")                          \
+    X(BODY_PITCH, 0x37, 1, RW, 0, 0x80, ANY, 0, 0, "body_pitch")                        \
+    X(BODY_YAW, 0x38, 1, RW, 0, 0x80, ANY, 0, 0, "body_yaw")                            \
+    X(PERIOD_ROLL, 0x39, 1, RW, 0, 0x00, ANY, 0, 0, "period_roll")                      \
+    X(PERIOD_PITCH, 0x3A, 1, RW, 0, 0x00, ANY, 0, 0, "period_pitch")                    \
+    X(PERIOD_YAW, 0x3B, 1, RW, 0, 0x00, ANY, 0, 0, "period_yaw")                        \
+    X(MARK_TIME, 0x3C, 1, RW, 0, 0x00, ANY, 0, 0, "mark_time")                          \
+    X(MOVE_MODE, 0x3D, 1, RW, 0, 0x00, RANGE, 0, 2, "move_mode")                        \
+    X(ACTION, 0x3E, 1, W, 0, 0x00, ACTION, 0, 0, "action")                              \
+    X(LEG1_X, 0x40, 1, RW, 0, 0x80, ANY, 0, 0, "leg1_x")                                \
+    X(LEG1_Y, 0x41, 1, RW, 0, 0x80, ANY, 0, 0, "leg1_y")                                \
+    X(LEG1_Z, 0x42, 1, RW, 0, 0x80, ANY, 0, 0, "leg1_z")                                \
+    X(LEG2_X, 0x43, 1, RW, 0, 0x80, ANY, 0, 0, "leg2_x")                                \
+    X(LEG2_Y, 0x44, 1, RW, 0, 0x80, ANY, 0, 0, "leg2_y")                                \
+    X(LEG2_Z, 0x45, 1, RW, 0, 0x80, ANY, 0, 0, "leg2_z")                                \
+    X(LEG3_X, 0x46, 1, RW, 0, 0x80, ANY, 0, 0, "leg3_x")                                \
+    X(LEG3_Y, 0x47, 1, RW, 0, 0x80, ANY, 0, 0, "leg3_y")                                \
+    X(LEG3_Z, 0x48, 1, RW, 0, 0x80, ANY, 0, 0, "leg3_z")                                \
+    X(LEG4_X, 0x49, 1, RW, 0, 0x80, ANY, 0, 0, "leg4_x")                                \
+    X(LEG4_Y, 0x4A, 1, RW, 0, 0x80, ANY, 0, 0, "leg4_y")                                \
+    X(LEG4_Z, 0x4B, 1, RW, 0, 0x80, ANY, 0, 0, "leg4_z")                                \
+    X(SERVO11, 0x50, 1, RW, 0, 0x80, ANY, 0, 0, "servo11")                              \
+    X(SERVO12, 0x51, 1, RW, 0, 0x80, ANY, 0, 0, "servo12")                              \
+    X(SERVO13, 0x52, 1, RW, 0, 0x80, ANY, 0, 0, "servo13")                              \
+    X(SERVO21, 0x53, 1, RW, 0, 0x80, ANY, 0, 0, "servo21")                              \
+    X(SERVO22, 0x54, 1, RW, 0, 0x80, ANY, 0, 0, "servo22")                              \
+    X(SERVO23, 0x55, 1, RW, 0, 0x80, ANY, 0, 0, "servo23")                              \
+    X(SERVO31, 0x56, 1, RW, 0, 0x80, ANY, 0, 0, "servo31")                              \
+    X(SERVO32, 0x57, 1, RW, 0, 0x80, ANY, 0, 0, "servo32")                              \
+    X(SERVO33, 0x58, 1, RW, 0, 0x80, ANY, 0, 0, "servo33")                              \
+    X(SERVO41, 0x59, 1, RW, 0, 0x80, ANY, 0, 0, "servo41")                              \
+    X(SERVO42, 0x5A, 1, RW, 0, 0x80, ANY, 0, 0, "servo42")                              \
+    X(SERVO43, 0x5B, 1, RW, 0, 0x80, ANY, 0, 0, "servo43")                              \
+    X(SERVO_SPEED, 0x5C, 1, RW, 0, 0x80, ANY, 0, 0, "servo_speed")                      \
+    X(STAND, 0x5D, 1, W, AUTO_CLEAR, 0x00, RANGE, 0, 1, "stand")                        \
+    X(IMU_MODE, 0x61, 1, RW, 0, 0x00, RANGE, 0, 1, "imu_mode")                          \
+    X(IMU_ROLL, 0x62, 1, R, COMPUTED, 0x80, ANY, 0, 0, "imu_roll")                      \
+    X(IMU_PITCH, 0x63, 1, R, COMPUTED, 0x80, ANY, 0, 0, "imu_pitch")                    \
+    X(IMU_YAW, 0x64, 1, R, COMPUTED, 0x80, ANY, 0, 0, "imu_yaw")                        \
+    X(PERIOD_X, 0x80, 1, RW, 0, 0x00, ANY, 0, 0, "period_x")                            \
+    X(PERIOD_Y, 0x81, 1, RW, 0, 0x00, ANY, 0, 0, "period_y")                            \
+    X(PERIOD_Z, 0x82, 1, RW, 0, 0x00, ANY, 0, 0, "period_z")                            \
+    X(DIAG, 0xD0, 48, R, COMPUTED, 0x00, ANY, 0, 0, "diag")
+
+/* Register addresses: XGO_REG_VX == 0x30, ... */
+enum xgo_reg_addr_e {
+#define XGO_REG_ENUM_(id, addr, w, acc, fl, init, v, lo, hi, name) XGO_REG_##id = addr,
+    XGO_REG_LIST(XGO_REG_ENUM_)
+#undef XGO_REG_ENUM_
+    XGO_REG_ADDR_END_ = 0x100
+};
+
+#define XGO_FIRMWARE_LEN 10u
+#define XGO_BT_NAME_LEN 10u
+
+/* Diagnostic block at 0xD0: XGO_DIAG_COUNT uint32 little-endian counters, in
+ * this order (docs/registers.md). Read-only; counters wrap at 2^32. */
+typedef enum xgo_diag_e {
+    XGO_DIAG_FRAMES_OK = 0,
+    XGO_DIAG_BAD_CHECKSUM,
+    XGO_DIAG_BAD_TAIL,
+    XGO_DIAG_BAD_LENGTH,
+    XGO_DIAG_BAD_TYPE,
+    XGO_DIAG_BAD_RANGE,
+    XGO_DIAG_BYTES_DISCARDED,
+    XGO_DIAG_TIMEOUTS,
+    XGO_DIAG_REJECTED_READ_ONLY,
+    XGO_DIAG_REJECTED_VALUE,
+    XGO_DIAG_IGNORED_UNMAPPED,
+    XGO_DIAG_TX_OVERFLOW,
+    XGO_DIAG_COUNT
+} xgo_diag_t;
+
+typedef struct xgo_reg_desc_s {
+    uint8_t addr;
+    uint8_t width;
+    uint8_t access;
+    uint8_t flags;
+    uint8_t initial;
+    uint8_t valid; /* xgo_valid_t */
+    uint8_t lo, hi;
+    const char *name;
+} xgo_reg_desc_t;
+
+typedef struct xgo_regs_stats_s {
+    uint32_t writes_ok;
+    uint32_t rejected_read_only;
+    uint32_t rejected_value;
+    uint32_t ignored_unmapped; /* accepted write frames with bytes for addresses the Mini lacks */
+} xgo_regs_stats_t;
+
+typedef struct xgo_regs_s {
+    uint8_t mem[XGO_REG_COUNT];      /* flat image; unmapped addresses stay 0 */
+    uint8_t index[XGO_REG_COUNT];    /* descriptor index per address, 0xFF = unmapped */
+    uint8_t written[XGO_REG_COUNT / 8]; /* bit per address: written since last taken */
+    char firmware[XGO_FIRMWARE_LEN]; /* NUL padded ASCII */
+    int32_t attitude_mdeg[3];        /* roll, pitch, yaw in millidegrees */
+    xgo_regs_stats_t stats;
+} xgo_regs_t;
+
+/* The descriptor table and lookups. */
+size_t xgo_reg_table_size(void);
+const xgo_reg_desc_t *xgo_reg_table_entry(size_t i);
+const xgo_reg_desc_t *xgo_reg_find(uint8_t addr); /* NULL when the Mini lacks addr */
+/* Name of the register at addr ("vx", "bt_name[3]" style is the caller's job);
+ * "-" when unmapped. */
+const char *xgo_reg_name(uint8_t addr);
+int xgo_reg_value_valid(const xgo_reg_desc_t *d, uint8_t value);
+
+/* firmware: up to 10 ASCII chars; version: 0x00 Mini, 0x01 Lite. */
+void xgo_regs_init(xgo_regs_t *r, const char *firmware, uint8_t version);
+
+/* Restore every writable, volatile register to its initial value (action 255). */
+void xgo_regs_restore_initial(xgo_regs_t *r);
+
+/* Host write of n bytes at addr, validated whole: returns XGO_DROP_NONE and
+ * applies it, or returns the reason and changes nothing (counted). */
+xgo_drop_reason_t xgo_regs_write(xgo_regs_t *r, uint8_t addr, const uint8_t *data, size_t n);
+
+/* Host read of n bytes at addr into out (computed views applied). Returns
+ * XGO_DROP_NONE, or XGO_DROP_BAD_RANGE for n == 0, n > 247 or addr + n > 256. */
+xgo_drop_reason_t xgo_regs_read(const xgo_regs_t *r, uint8_t addr, size_t n, uint8_t *out);
+
+/* Board-side access: no validation, no counting. */
+uint8_t xgo_regs_get(const xgo_regs_t *r, uint8_t addr);
+void xgo_regs_set(xgo_regs_t *r, uint8_t addr, uint8_t value);
+
+/* True (once) if the host wrote addr since the last call for it. */
+int xgo_regs_take_written(xgo_regs_t *r, uint8_t addr);
+
+/* Board-side updates of computed registers. */
+void xgo_regs_set_attitude(xgo_regs_t *r, int32_t roll_mdeg, int32_t pitch_mdeg, int32_t yaw_mdeg);
+void xgo_regs_set_diag(xgo_regs_t *r, const uint32_t counters[XGO_DIAG_COUNT]);
+
+/* Encodings used by the computed views (exposed for tests and tools). */
+uint8_t xgo_angle_to_byte(int32_t mdeg);            /* 0x80 = 0, 1 LSB = 180/128 deg */
+uint32_t xgo_mdeg_to_float32_bits(int32_t mdeg);    /* IEEE-754 bits of mdeg / 1000 */
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* XGO_REGS_H */
