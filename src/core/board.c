@@ -1,0 +1,213 @@
+/*
+ * The board: parser -> register file -> replies, plus the control tick.
+ */
+#include "xgo/board.h"
+
+#include <string.h>
+
+/* Firmware strings: the first character selects the vendor library's
+ * parameter set ('M' Mini, 'L' Lite); the rest marks an emulator. */
+static const char k_firmware_mini[] = "M-EMU-0.1";
+static const char k_firmware_lite[] = "L-EMU-0.1";
+
+static const char *const k_diag_names[XGO_DIAG_COUNT] = {
+    "frames_ok",          "bad_checksum",   "bad_tail",         "bad_length",
+    "bad_type",           "bad_range",      "bytes_discarded",  "timeouts",
+    "rejected_read_only", "rejected_value", "ignored_unmapped", "tx_overflow",
+};
+
+const char *xgo_diag_name(xgo_diag_t which)
+{
+    return (unsigned)which < XGO_DIAG_COUNT ? k_diag_names[which] : "unknown";
+}
+
+void xgo_board_default_config(xgo_board_config_t *cfg)
+{
+    cfg->model = XGO_MODEL_MINI;
+    cfg->parser_timeout_ms = XGO_PARSER_DEFAULT_TIMEOUT_MS;
+    cfg->battery_pct = 100;
+}
+
+static void emit(xgo_board_t *b, xgo_trace_kind_t kind, xgo_drop_reason_t reason,
+                 const xgo_frame_t *frame, const uint8_t *raw, size_t raw_len, uint8_t unmapped)
+{
+    xgo_trace_event_t ev;
+    if (b->trace == NULL) {
+        return;
+    }
+    ev.kind = kind;
+    ev.reason = reason;
+    ev.frame = frame;
+    ev.raw = raw;
+    ev.raw_len = raw_len;
+    ev.unmapped = unmapped;
+    b->trace(b->trace_ctx, &ev);
+}
+
+/* Queue a whole frame or nothing: a truncated reply would desynchronise the
+ * host's parser. */
+static int tx_push(xgo_board_t *b, const uint8_t *bytes, size_t n)
+{
+    size_t i;
+    if (n > XGO_TX_BUFFER_SIZE - (size_t)b->tx_len) {
+        return 0;
+    }
+    for (i = 0; i < n; i++) {
+        b->tx[(b->tx_head + b->tx_len + i) % XGO_TX_BUFFER_SIZE] = bytes[i];
+    }
+    b->tx_len = (uint16_t)(b->tx_len + n);
+    return 1;
+}
+
+size_t xgo_board_transmit(xgo_board_t *b, uint8_t *out, size_t max)
+{
+    size_t n = b->tx_len < max ? b->tx_len : max;
+    size_t i;
+    for (i = 0; i < n; i++) {
+        out[i] = b->tx[(b->tx_head + i) % XGO_TX_BUFFER_SIZE];
+    }
+    b->tx_head = (uint16_t)((b->tx_head + n) % XGO_TX_BUFFER_SIZE);
+    b->tx_len = (uint16_t)(b->tx_len - n);
+    return n;
+}
+
+size_t xgo_board_tx_pending(const xgo_board_t *b)
+{
+    return b->tx_len;
+}
+
+void xgo_board_counters(const xgo_board_t *b, uint32_t out[XGO_DIAG_COUNT])
+{
+    const xgo_parser_stats_t *ps = &b->parser.stats;
+    const xgo_regs_stats_t *rs = &b->regs.stats;
+    out[XGO_DIAG_FRAMES_OK] = ps->frames_ok;
+    out[XGO_DIAG_BAD_CHECKSUM] = ps->bad_checksum;
+    out[XGO_DIAG_BAD_TAIL] = ps->bad_tail;
+    out[XGO_DIAG_BAD_LENGTH] = ps->bad_length;
+    out[XGO_DIAG_BAD_TYPE] = ps->bad_type;
+    out[XGO_DIAG_BAD_RANGE] = ps->bad_range;
+    out[XGO_DIAG_BYTES_DISCARDED] = ps->bytes_discarded;
+    out[XGO_DIAG_TIMEOUTS] = ps->timeouts;
+    out[XGO_DIAG_REJECTED_READ_ONLY] = rs->rejected_read_only;
+    out[XGO_DIAG_REJECTED_VALUE] = rs->rejected_value;
+    out[XGO_DIAG_IGNORED_UNMAPPED] = rs->ignored_unmapped;
+    out[XGO_DIAG_TX_OVERFLOW] = b->tx_overflows;
+}
+
+static uint8_t count_unmapped(const xgo_regs_t *r, const xgo_frame_t *f)
+{
+    uint8_t n = 0;
+    unsigned i;
+    for (i = 0; i < f->len; i++) {
+        if (r->index[(f->addr + i) & 0xFFu] == 0xFFu) {
+            n++;
+        }
+    }
+    return n;
+}
+
+static void handle_write(xgo_board_t *b, const xgo_frame_t *f)
+{
+    const uint8_t unmapped = count_unmapped(&b->regs, f);
+    const xgo_drop_reason_t why = xgo_regs_write(&b->regs, f->addr, f->data, f->len);
+    if (why != XGO_DROP_NONE) {
+        emit(b, XGO_TRACE_DROP, why, f, NULL, 0, 0);
+        return;
+    }
+    emit(b, XGO_TRACE_RX, XGO_DROP_NONE, f, NULL, 0, unmapped);
+}
+
+static void handle_read(xgo_board_t *b, const xgo_frame_t *f)
+{
+    uint8_t data[XGO_FRAME_MAX_DATA];
+    uint8_t frame_bytes[XGO_FRAME_MAX_LEN];
+    uint32_t counters[XGO_DIAG_COUNT];
+    const size_t n = f->data[0];
+    xgo_frame_t reply;
+    size_t size;
+
+    emit(b, XGO_TRACE_RX, XGO_DROP_NONE, f, NULL, 0, 0);
+    xgo_board_counters(b, counters);
+    xgo_regs_set_diag(&b->regs, counters);
+    if (xgo_regs_read(&b->regs, f->addr, n, data) != XGO_DROP_NONE) {
+        return; /* the parser already rejects such ranges */
+    }
+    size = xgo_frame_encode(XGO_TYPE_READ_REPLY, f->addr, data, n, frame_bytes,
+                            sizeof frame_bytes);
+    reply.type = XGO_TYPE_READ_REPLY;
+    reply.addr = f->addr;
+    reply.len = (uint8_t)n;
+    reply.data = data;
+    if (!tx_push(b, frame_bytes, size)) {
+        b->tx_overflows++;
+        emit(b, XGO_TRACE_DROP, XGO_DROP_TX_OVERFLOW, &reply, NULL, 0, 0);
+        return;
+    }
+    emit(b, XGO_TRACE_TX, XGO_DROP_NONE, &reply, NULL, 0, 0);
+}
+
+static void on_frame(void *ctx, const xgo_frame_t *f)
+{
+    xgo_board_t *b = (xgo_board_t *)ctx;
+    if (f->type == XGO_TYPE_READ) {
+        handle_read(b, f);
+    } else {
+        handle_write(b, f);
+    }
+}
+
+static void on_drop(void *ctx, xgo_drop_reason_t why, const uint8_t *bytes, size_t n)
+{
+    emit((xgo_board_t *)ctx, XGO_TRACE_DROP, why, NULL, bytes, n, 0);
+}
+
+void xgo_board_init(xgo_board_t *b, const xgo_board_config_t *cfg)
+{
+    xgo_parser_sink_t sink;
+    memset(b, 0, sizeof *b);
+    if (cfg != NULL) {
+        b->config = *cfg;
+    } else {
+        xgo_board_default_config(&b->config);
+    }
+    if (b->config.battery_pct > 100) {
+        b->config.battery_pct = 100;
+    }
+    sink.on_frame = on_frame;
+    sink.on_drop = on_drop;
+    sink.ctx = b;
+    xgo_parser_init(&b->parser, &sink, b->config.parser_timeout_ms);
+    xgo_regs_init(&b->regs,
+                  b->config.model == XGO_MODEL_LITE ? k_firmware_lite : k_firmware_mini,
+                  b->config.model == XGO_MODEL_LITE ? 0x01u : 0x00u);
+    xgo_regs_set(&b->regs, XGO_REG_BATTERY, b->config.battery_pct);
+}
+
+void xgo_board_set_trace(xgo_board_t *b, xgo_trace_fn fn, void *ctx)
+{
+    b->trace = fn;
+    b->trace_ctx = ctx;
+}
+
+void xgo_board_receive(xgo_board_t *b, const uint8_t *bytes, size_t n, uint32_t now_ms)
+{
+    xgo_parser_feed(&b->parser, bytes, n, now_ms);
+}
+
+void xgo_board_poll(xgo_board_t *b, uint32_t now_ms)
+{
+    xgo_parser_poll(&b->parser, now_ms);
+}
+
+void xgo_board_tick(xgo_board_t *b)
+{
+    b->ticks++;
+    /* Auto-clear registers: the board acts on the request during the tick
+     * after the write, then the register reads 0 again. */
+    if (xgo_regs_take_written(&b->regs, XGO_REG_SET_ZERO)) {
+        xgo_regs_set(&b->regs, XGO_REG_SET_ZERO, 0);
+    }
+    if (xgo_regs_take_written(&b->regs, XGO_REG_STAND)) {
+        xgo_regs_set(&b->regs, XGO_REG_STAND, 0);
+    }
+}

@@ -1,0 +1,240 @@
+/*
+ * Frame encoder and the resynchronising parser.
+ *
+ * The parser keeps every byte of the current candidate frame in buf[0..end).
+ * buf[0..checked) has passed the checks that apply to its positions; bytes in
+ * buf[checked..end) are waiting to be (re)examined. On any rejection the first
+ * byte is discarded and everything after it is examined again from scratch, so
+ * a header that hid inside a rejected candidate (after a false LEN, inside a
+ * truncated frame, ...) is still found. Each rejection discards at least one
+ * byte, which bounds the work per input byte by the frame size.
+ */
+#include "xgo/protocol.h"
+
+#include <string.h>
+
+/* Positions inside a frame. */
+enum { POS_HEAD0 = 0, POS_HEAD1 = 1, POS_LEN = 2, POS_TYPE = 3, POS_ADDR = 4, POS_DATA = 5 };
+
+const char *xgo_drop_reason_name(xgo_drop_reason_t reason)
+{
+    switch (reason) {
+    case XGO_DROP_NONE: return "none";
+    case XGO_DROP_BAD_CHECKSUM: return "bad checksum";
+    case XGO_DROP_BAD_TAIL: return "bad tail";
+    case XGO_DROP_BAD_LENGTH: return "bad length";
+    case XGO_DROP_BAD_TYPE: return "bad type";
+    case XGO_DROP_BAD_RANGE: return "bad address range";
+    case XGO_DROP_TIMEOUT: return "timeout";
+    case XGO_DROP_READ_ONLY: return "read-only register";
+    case XGO_DROP_BAD_VALUE: return "value not allowed";
+    case XGO_DROP_TX_OVERFLOW: return "transmit buffer full";
+    case XGO_DROP_REASON_COUNT: break;
+    }
+    return "unknown";
+}
+
+uint8_t xgo_frame_checksum(uint8_t len, uint8_t type, uint8_t addr, const uint8_t *data, size_t n)
+{
+    uint32_t sum = (uint32_t)len + type + addr;
+    size_t i;
+    for (i = 0; i < n; i++) {
+        sum += data[i];
+    }
+    return (uint8_t)~sum;
+}
+
+size_t xgo_frame_encode(uint8_t type, uint8_t addr, const uint8_t *data, size_t n,
+                        uint8_t *out, size_t out_size)
+{
+    size_t total = n + XGO_FRAME_OVERHEAD;
+    if (n == 0 || n > XGO_FRAME_MAX_DATA || out == NULL || out_size < total) {
+        return 0;
+    }
+    out[POS_HEAD0] = XGO_FRAME_HEAD0;
+    out[POS_HEAD1] = XGO_FRAME_HEAD1;
+    out[POS_LEN] = (uint8_t)total;
+    out[POS_TYPE] = type;
+    out[POS_ADDR] = addr;
+    memcpy(&out[POS_DATA], data, n);
+    out[POS_DATA + n] = xgo_frame_checksum((uint8_t)total, type, addr, data, n);
+    out[POS_DATA + n + 1] = XGO_FRAME_TAIL0;
+    out[POS_DATA + n + 2] = XGO_FRAME_TAIL1;
+    return total;
+}
+
+void xgo_parser_init(xgo_parser_t *p, const xgo_parser_sink_t *sink, uint32_t timeout_ms)
+{
+    memset(p, 0, sizeof *p);
+    if (sink != NULL) {
+        p->sink = *sink;
+    }
+    p->timeout_ms = timeout_ms;
+}
+
+size_t xgo_parser_pending(const xgo_parser_t *p)
+{
+    return p->end;
+}
+
+static void count_drop(xgo_parser_t *p, xgo_drop_reason_t reason)
+{
+    switch (reason) {
+    case XGO_DROP_BAD_CHECKSUM: p->stats.bad_checksum++; break;
+    case XGO_DROP_BAD_TAIL: p->stats.bad_tail++; break;
+    case XGO_DROP_BAD_LENGTH: p->stats.bad_length++; break;
+    case XGO_DROP_BAD_TYPE: p->stats.bad_type++; break;
+    case XGO_DROP_BAD_RANGE: p->stats.bad_range++; break;
+    case XGO_DROP_TIMEOUT: p->stats.timeouts++; break;
+    default: break;
+    }
+}
+
+/* Remove the first n held bytes; they count as discarded unless delivered. */
+static void consume(xgo_parser_t *p, size_t n)
+{
+    memmove(p->buf, p->buf + n, p->end - n);
+    p->end = (uint16_t)(p->end - n);
+    p->checked = 0;
+}
+
+/* The candidate in buf[0..checked) is rejected: report it, drop its first
+ * byte and let the rest be examined again. */
+static void reject(xgo_parser_t *p, xgo_drop_reason_t reason)
+{
+    count_drop(p, reason);
+    if (p->sink.on_drop != NULL) {
+        p->sink.on_drop(p->sink.ctx, reason, p->buf, p->checked);
+    }
+    p->stats.bytes_discarded++;
+    consume(p, 1);
+}
+
+static int type_valid(uint8_t type)
+{
+    return type == XGO_TYPE_WRITE || type == XGO_TYPE_WRITE_LEGACY || type == XGO_TYPE_READ;
+}
+
+/* A complete, well-formed frame: checked for range, then delivered. */
+static void complete(xgo_parser_t *p)
+{
+    const uint8_t len = p->buf[POS_LEN];
+    const size_t n = (size_t)len - XGO_FRAME_OVERHEAD;
+    xgo_frame_t frame;
+    uint32_t span;
+
+    if (p->buf[len - 2] != XGO_FRAME_TAIL0 || p->buf[len - 1] != XGO_FRAME_TAIL1) {
+        reject(p, XGO_DROP_BAD_TAIL);
+        return;
+    }
+    if (p->buf[len - 3] !=
+        xgo_frame_checksum(len, p->buf[POS_TYPE], p->buf[POS_ADDR], &p->buf[POS_DATA], n)) {
+        reject(p, XGO_DROP_BAD_CHECKSUM);
+        return;
+    }
+    frame.type = p->buf[POS_TYPE];
+    frame.addr = p->buf[POS_ADDR];
+    frame.len = (uint8_t)n;
+    frame.data = &p->buf[POS_DATA];
+
+    /* A read asks for data[0] bytes; a write carries n. */
+    span = (frame.type == XGO_TYPE_READ) ? frame.data[0] : (uint32_t)n;
+    if (span == 0 || span > XGO_FRAME_MAX_DATA || (uint32_t)frame.addr + span > 256u) {
+        /* Well-formed but meaningless: the whole frame goes, no rescan (its
+         * checksum and tail prove the bytes belong together). */
+        p->stats.bad_range++;
+        if (p->sink.on_drop != NULL) {
+            p->sink.on_drop(p->sink.ctx, XGO_DROP_BAD_RANGE, p->buf, len);
+        }
+        p->stats.bytes_discarded += len;
+        consume(p, len);
+        return;
+    }
+    p->stats.frames_ok++;
+    if (p->sink.on_frame != NULL) {
+        p->sink.on_frame(p->sink.ctx, &frame);
+    }
+    consume(p, len);
+}
+
+/* Examine held bytes until all are checked or a frame completes. */
+static void scan(xgo_parser_t *p)
+{
+    while (p->checked < p->end) {
+        const uint16_t pos = p->checked;
+        const uint8_t byte = p->buf[pos];
+        p->checked++;
+        switch (pos) {
+        case POS_HEAD0:
+            if (byte != XGO_FRAME_HEAD0) {
+                /* Hunting: skip to the next possible header in one move. */
+                size_t skip = 1;
+                while (skip < p->end && p->buf[skip] != XGO_FRAME_HEAD0) {
+                    skip++;
+                }
+                p->stats.bytes_discarded += (uint32_t)skip;
+                consume(p, skip);
+            }
+            break;
+        case POS_HEAD1:
+            if (byte != XGO_FRAME_HEAD1) {
+                /* Not a header after all: no frame was claimed, just noise. */
+                p->stats.bytes_discarded++;
+                consume(p, 1);
+            }
+            break;
+        case POS_LEN:
+            if (byte < XGO_FRAME_OVERHEAD + 1u) {
+                reject(p, XGO_DROP_BAD_LENGTH);
+            }
+            break;
+        case POS_TYPE:
+            if (!type_valid(byte)) {
+                reject(p, XGO_DROP_BAD_TYPE);
+            } else if (byte == XGO_TYPE_READ && p->buf[POS_LEN] != XGO_READ_REQUEST_LEN) {
+                reject(p, XGO_DROP_BAD_LENGTH);
+            }
+            break;
+        default:
+            if (p->checked == p->buf[POS_LEN]) {
+                complete(p);
+            }
+            break;
+        }
+    }
+}
+
+/* Silence since the last byte: the partial frame will never complete, but a
+ * whole frame may hide inside it. Drop its first byte and rescan until
+ * nothing is left pending. */
+void xgo_parser_poll(xgo_parser_t *p, uint32_t now_ms)
+{
+    if (p->end == 0 || p->timeout_ms == 0 || (uint32_t)(now_ms - p->last_rx_ms) < p->timeout_ms) {
+        return;
+    }
+    p->stats.timeouts++;
+    if (p->sink.on_drop != NULL) {
+        p->sink.on_drop(p->sink.ctx, XGO_DROP_TIMEOUT, p->buf, p->end);
+    }
+    while (p->end > 0) {
+        p->stats.bytes_discarded++;
+        consume(p, 1);
+        scan(p);
+    }
+}
+
+void xgo_parser_feed(xgo_parser_t *p, const uint8_t *bytes, size_t n, uint32_t now_ms)
+{
+    size_t i;
+    if (n == 0) {
+        return;
+    }
+    xgo_parser_poll(p, now_ms);
+    for (i = 0; i < n; i++) {
+        /* Room is guaranteed: after scan() the held bytes are a strict prefix
+         * of a candidate frame, so end < 255. */
+        p->buf[p->end++] = bytes[i];
+        scan(p);
+    }
+    p->last_rx_ms = now_ms;
+}

@@ -1,0 +1,295 @@
+/*
+ * The register file: descriptor table, whole-frame validation, computed views.
+ */
+#include "xgo/regs.h"
+
+#include <string.h>
+
+#define UNMAPPED 0xFFu
+
+/* Flags column: 0 or a XGO_REGF_ suffix. */
+#define XGO_REGF_0 0u
+
+static const xgo_reg_desc_t k_regs[] = {
+#define XGO_REG_DESC_(id, a, w, acc, fl, init, v, l, h, nm)                                  \
+    {(uint8_t)(a), (uint8_t)(w), XGO_ACCESS_##acc, (uint8_t)(XGO_REGF_##fl + 0), (uint8_t)(init), \
+     (uint8_t)XGO_VALID_##v, (uint8_t)(l), (uint8_t)(h), nm},
+    XGO_REG_LIST(XGO_REG_DESC_)
+#undef XGO_REG_DESC_
+};
+
+#define REG_TABLE_SIZE (sizeof k_regs / sizeof k_regs[0])
+
+size_t xgo_reg_table_size(void)
+{
+    return REG_TABLE_SIZE;
+}
+
+const xgo_reg_desc_t *xgo_reg_table_entry(size_t i)
+{
+    return i < REG_TABLE_SIZE ? &k_regs[i] : NULL;
+}
+
+const xgo_reg_desc_t *xgo_reg_find(uint8_t addr)
+{
+    size_t i;
+    for (i = 0; i < REG_TABLE_SIZE; i++) {
+        const xgo_reg_desc_t *d = &k_regs[i];
+        if (addr >= d->addr && (unsigned)addr < (unsigned)d->addr + d->width) {
+            return d;
+        }
+    }
+    return NULL;
+}
+
+const char *xgo_reg_name(uint8_t addr)
+{
+    const xgo_reg_desc_t *d = xgo_reg_find(addr);
+    return d != NULL ? d->name : "-";
+}
+
+int xgo_reg_value_valid(const xgo_reg_desc_t *d, uint8_t v)
+{
+    switch ((xgo_valid_t)d->valid) {
+    case XGO_VALID_ANY: return 1;
+    case XGO_VALID_RANGE: return v >= d->lo && v <= d->hi;
+    case XGO_VALID_UNLOAD:
+        return v == 0x00 || v == 0x01 || (v >= 0x11 && v <= 0x14) || (v >= 0x21 && v <= 0x24);
+    case XGO_VALID_ACTION: return v <= 24 || v == 255;
+    case XGO_VALID_ASCII: return v >= 0x20 && v <= 0x7E;
+    }
+    return 0;
+}
+
+static void mark_written(xgo_regs_t *r, uint8_t addr)
+{
+    r->written[addr >> 3] = (uint8_t)(r->written[addr >> 3] | (1u << (addr & 7u)));
+}
+
+int xgo_regs_take_written(xgo_regs_t *r, uint8_t addr)
+{
+    const uint8_t bit = (uint8_t)(1u << (addr & 7u));
+    const int was = (r->written[addr >> 3] & bit) != 0;
+    r->written[addr >> 3] = (uint8_t)(r->written[addr >> 3] & ~bit);
+    return was;
+}
+
+/* The flat image of the firmware window: every byte but 0x09 (gait type). */
+static void store_firmware(xgo_regs_t *r)
+{
+    unsigned i;
+    for (i = 0; i < XGO_FIRMWARE_LEN; i++) {
+        if (XGO_REG_FIRMWARE + i != XGO_REG_GAIT_TYPE) {
+            r->mem[XGO_REG_FIRMWARE + i] = (uint8_t)r->firmware[i];
+        }
+    }
+}
+
+static void load_initial(xgo_regs_t *r, int include_nonvolatile)
+{
+    size_t i;
+    for (i = 0; i < REG_TABLE_SIZE; i++) {
+        const xgo_reg_desc_t *d = &k_regs[i];
+        if ((d->flags & XGO_REGF_COMPUTED) != 0 || d->access == XGO_ACCESS_R) {
+            continue;
+        }
+        if (!include_nonvolatile && (d->flags & XGO_REGF_NONVOLATILE) != 0) {
+            continue;
+        }
+        memset(&r->mem[d->addr], d->initial, d->width);
+    }
+}
+
+void xgo_regs_init(xgo_regs_t *r, const char *firmware, uint8_t version)
+{
+    size_t i;
+    static const char k_default_name[] = "XGOMINI";
+
+    memset(r, 0, sizeof *r);
+    memset(r->index, UNMAPPED, sizeof r->index);
+    /* Walk backwards so that on overlap the earlier table entry wins. */
+    for (i = REG_TABLE_SIZE; i-- > 0;) {
+        unsigned a;
+        for (a = k_regs[i].addr; a < (unsigned)k_regs[i].addr + k_regs[i].width; a++) {
+            r->index[a] = (uint8_t)i;
+        }
+    }
+    for (i = 0; i < XGO_FIRMWARE_LEN && firmware != NULL && firmware[i] != '\0'; i++) {
+        r->firmware[i] = firmware[i];
+    }
+    load_initial(r, 1);
+    for (i = 0; i < XGO_REG_COUNT; i++) {
+        const xgo_reg_desc_t *d = r->index[i] == UNMAPPED ? NULL : &k_regs[r->index[i]];
+        if (d != NULL && d->access == XGO_ACCESS_R && (d->flags & XGO_REGF_COMPUTED) == 0) {
+            r->mem[i] = d->initial;
+        }
+    }
+    memcpy(&r->mem[XGO_REG_BT_NAME], k_default_name, sizeof k_default_name - 1);
+    r->mem[XGO_REG_VERSION] = version;
+    store_firmware(r);
+    xgo_regs_set_attitude(r, 0, 0, 0);
+}
+
+void xgo_regs_restore_initial(xgo_regs_t *r)
+{
+    load_initial(r, 0);
+    memset(r->written, 0, sizeof r->written);
+}
+
+uint8_t xgo_regs_get(const xgo_regs_t *r, uint8_t addr)
+{
+    return r->mem[addr];
+}
+
+void xgo_regs_set(xgo_regs_t *r, uint8_t addr, uint8_t value)
+{
+    r->mem[addr] = value;
+}
+
+static const xgo_reg_desc_t *desc_at(const xgo_regs_t *r, unsigned addr)
+{
+    return r->index[addr] == UNMAPPED ? NULL : &k_regs[r->index[addr]];
+}
+
+xgo_drop_reason_t xgo_regs_write(xgo_regs_t *r, uint8_t addr, const uint8_t *data, size_t n)
+{
+    size_t i;
+    int unmapped = 0;
+
+    if (n == 0 || n > XGO_FRAME_MAX_DATA || (size_t)addr + n > XGO_REG_COUNT) {
+        return XGO_DROP_BAD_RANGE;
+    }
+    /* Pass 1: validate everything, change nothing. */
+    for (i = 0; i < n; i++) {
+        const unsigned a = (unsigned)addr + (unsigned)i;
+        const xgo_reg_desc_t *d = desc_at(r, a);
+        if (d == NULL) {
+            unmapped = 1;
+            continue;
+        }
+        if ((d->access & XGO_ACCESS_W) == 0) {
+            r->stats.rejected_read_only++;
+            return XGO_DROP_READ_ONLY;
+        }
+        /* A multi-byte register is written from its first byte (a name
+         * written from the middle has no meaning). */
+        if (d->width > 1 && a != d->addr && i == 0) {
+            r->stats.rejected_value++;
+            return XGO_DROP_BAD_VALUE;
+        }
+        if (!xgo_reg_value_valid(d, data[i])) {
+            r->stats.rejected_value++;
+            return XGO_DROP_BAD_VALUE;
+        }
+    }
+    /* Pass 2: apply. */
+    for (i = 0; i < n; i++) {
+        const unsigned a = (unsigned)addr + (unsigned)i;
+        const xgo_reg_desc_t *d = desc_at(r, a);
+        if (d == NULL) {
+            continue;
+        }
+        if (d->width > 1 && a == d->addr) {
+            /* A shorter write sets the whole value: the rest is cleared. */
+            memset(&r->mem[a], 0, d->width);
+        }
+        r->mem[a] = data[i];
+        mark_written(r, (uint8_t)a);
+    }
+    if (unmapped) {
+        r->stats.ignored_unmapped++;
+    }
+    r->stats.writes_ok++;
+    return XGO_DROP_NONE;
+}
+
+static void put_u32_le(uint8_t *out, uint32_t v)
+{
+    out[0] = (uint8_t)v;
+    out[1] = (uint8_t)(v >> 8);
+    out[2] = (uint8_t)(v >> 16);
+    out[3] = (uint8_t)(v >> 24);
+}
+
+xgo_drop_reason_t xgo_regs_read(const xgo_regs_t *r, uint8_t addr, size_t n, uint8_t *out)
+{
+    if (n == 0 || n > XGO_FRAME_MAX_DATA || (size_t)addr + n > XGO_REG_COUNT) {
+        return XGO_DROP_BAD_RANGE;
+    }
+    memcpy(out, &r->mem[addr], n);
+    if (addr == XGO_REG_FIRMWARE) {
+        size_t i;
+        for (i = 0; i < n && i < XGO_FIRMWARE_LEN; i++) {
+            out[i] = (uint8_t)r->firmware[i];
+        }
+    }
+    if (addr >= XGO_REG_IMU_ROLL && addr <= XGO_REG_IMU_YAW && n >= 4) {
+        put_u32_le(out, xgo_mdeg_to_float32_bits(r->attitude_mdeg[addr - XGO_REG_IMU_ROLL]));
+    }
+    return XGO_DROP_NONE;
+}
+
+void xgo_regs_set_attitude(xgo_regs_t *r, int32_t roll_mdeg, int32_t pitch_mdeg, int32_t yaw_mdeg)
+{
+    r->attitude_mdeg[0] = roll_mdeg;
+    r->attitude_mdeg[1] = pitch_mdeg;
+    r->attitude_mdeg[2] = yaw_mdeg;
+    r->mem[XGO_REG_IMU_ROLL] = xgo_angle_to_byte(roll_mdeg);
+    r->mem[XGO_REG_IMU_PITCH] = xgo_angle_to_byte(pitch_mdeg);
+    r->mem[XGO_REG_IMU_YAW] = xgo_angle_to_byte(yaw_mdeg);
+}
+
+void xgo_regs_set_diag(xgo_regs_t *r, const uint32_t counters[XGO_DIAG_COUNT])
+{
+    size_t i;
+    for (i = 0; i < XGO_DIAG_COUNT; i++) {
+        put_u32_le(&r->mem[XGO_REG_DIAG + 4u * i], counters[i]);
+    }
+}
+
+uint8_t xgo_angle_to_byte(int32_t mdeg)
+{
+    /* 1 LSB = 180/128 deg = 1406.25 mdeg; round half away from zero. */
+    int64_t scaled = (int64_t)mdeg * 128;
+    int64_t q = (scaled >= 0 ? scaled + 90000 : scaled - 90000) / 180000;
+    q += 128;
+    if (q < 0) {
+        q = 0;
+    } else if (q > 255) {
+        q = 255;
+    }
+    return (uint8_t)q;
+}
+
+uint32_t xgo_mdeg_to_float32_bits(int32_t mdeg)
+{
+    /* value = m / 1000 with m = |mdeg|. Find e with 2^23 <= m*2^s/1000 < 2^24,
+     * then round the 24-bit significand to nearest, ties to even. */
+    uint32_t sign = mdeg < 0 ? 0x80000000u : 0u;
+    uint64_t m = mdeg < 0 ? (uint64_t)(-(int64_t)mdeg) : (uint64_t)mdeg;
+    int shift = 0; /* significand = m * 2^shift / 1000 */
+    uint64_t num, q, rem;
+    int32_t exponent;
+
+    if (m == 0) {
+        return sign;
+    }
+    /* Normalise num = m << shift into [2^23 * 1000, 2^24 * 1000). As
+     * 1 <= m <= 2^31 < 2^24 * 1000, shift is 0..33 and num < 2^44. */
+    num = m;
+    while (num < (uint64_t)1000u << 23) {
+        num <<= 1;
+        shift++;
+    }
+    q = num / 1000u;
+    rem = num % 1000u;
+    if (rem > 500u || (rem == 500u && (q & 1u) != 0)) {
+        q++;
+        if (q == (uint64_t)1u << 24) {
+            q >>= 1;
+            shift--;
+        }
+    }
+    exponent = 127 + 23 - shift;
+    return sign | ((uint32_t)exponent << 23) | ((uint32_t)q & 0x7FFFFFu);
+}

@@ -1,0 +1,341 @@
+/*
+ * The board end to end, bytes in -> bytes out, on virtual time: the spec's
+ * examples byte-exact, several requests per write, rejections counted and
+ * traced, vendor writes for other models, auto-clear, diagnostics over the
+ * wire, transmit overflow.
+ */
+#include <string.h>
+
+#include "unity.h"
+#include "xgo/board.h"
+
+static xgo_board_t board;
+
+#define MAX_EVENTS 64
+static xgo_trace_kind_t ev_kind[MAX_EVENTS];
+static xgo_drop_reason_t ev_reason[MAX_EVENTS];
+static uint8_t ev_unmapped[MAX_EVENTS];
+static size_t n_events;
+
+static void record(void *ctx, const xgo_trace_event_t *ev)
+{
+    (void)ctx;
+    if (n_events < MAX_EVENTS) {
+        ev_kind[n_events] = ev->kind;
+        ev_reason[n_events] = ev->reason;
+        ev_unmapped[n_events] = ev->unmapped;
+    }
+    n_events++;
+}
+
+void setUp(void)
+{
+    xgo_board_init(&board, NULL);
+    n_events = 0;
+    xgo_board_set_trace(&board, record, NULL);
+}
+
+void tearDown(void)
+{
+}
+
+static const uint8_t k_spec_write[] = {0x55, 0x00, 0x09, 0x00, 0x30, 0xFF, 0xC7, 0x00, 0xAA};
+static const uint8_t k_spec_read[] = {0x55, 0x00, 0x09, 0x02, 0x50, 0x0C, 0x98, 0x00, 0xAA};
+static const uint8_t k_spec_reply[] = {0x55, 0x00, 0x14, 0x12, 0x50, 0x80, 0x80, 0x80, 0x80,
+                                       0x80, 0x80, 0x80, 0x80, 0x80, 0x80, 0x80, 0x80, 0x89,
+                                       0x00, 0xAA};
+
+static void send(const uint8_t *bytes, size_t n)
+{
+    xgo_board_receive(&board, bytes, n, 0);
+}
+
+static void send_write(uint8_t addr, const uint8_t *data, size_t n)
+{
+    uint8_t f[XGO_FRAME_MAX_LEN];
+    send(f, xgo_frame_encode(XGO_TYPE_WRITE, addr, data, n, f, sizeof f));
+}
+
+static void send_read(uint8_t addr, uint8_t count)
+{
+    uint8_t f[16];
+    send(f, xgo_frame_encode(XGO_TYPE_READ, addr, &count, 1, f, sizeof f));
+}
+
+/* Read `count` bytes at addr over the wire and check the reply's framing. */
+static void wire_read(uint8_t addr, uint8_t count, uint8_t *out)
+{
+    uint8_t reply[XGO_FRAME_MAX_LEN];
+    size_t n;
+    send_read(addr, count);
+    n = xgo_board_transmit(&board, reply, sizeof reply);
+    TEST_ASSERT_EQUAL_UINT(count + 8u, n);
+    TEST_ASSERT_EQUAL_HEX8(0x55, reply[0]);
+    TEST_ASSERT_EQUAL_HEX8(0x00, reply[1]);
+    TEST_ASSERT_EQUAL_UINT8(count + 8u, reply[2]);
+    TEST_ASSERT_EQUAL_HEX8(XGO_TYPE_READ_REPLY, reply[3]);
+    TEST_ASSERT_EQUAL_HEX8(addr, reply[4]);
+    TEST_ASSERT_EQUAL_HEX8(xgo_frame_checksum(reply[2], reply[3], reply[4], &reply[5], count),
+                           reply[5 + count]);
+    TEST_ASSERT_EQUAL_HEX8(0x00, reply[6 + count]);
+    TEST_ASSERT_EQUAL_HEX8(0xAA, reply[7 + count]);
+    memcpy(out, &reply[5], count);
+}
+
+static uint8_t wire_read1(uint8_t addr)
+{
+    uint8_t v;
+    wire_read(addr, 1, &v);
+    return v;
+}
+
+static void test_spec_read_example_gets_the_spec_reply(void)
+{
+    uint8_t out[64];
+    send(k_spec_read, sizeof k_spec_read);
+    TEST_ASSERT_EQUAL_UINT(sizeof k_spec_reply, xgo_board_tx_pending(&board));
+    TEST_ASSERT_EQUAL_UINT(sizeof k_spec_reply, xgo_board_transmit(&board, out, sizeof out));
+    TEST_ASSERT_EQUAL_HEX8_ARRAY(k_spec_reply, out, sizeof k_spec_reply);
+    TEST_ASSERT_EQUAL_UINT(0, xgo_board_tx_pending(&board));
+}
+
+static void test_spec_write_example_sets_vx_and_sends_nothing(void)
+{
+    send(k_spec_write, sizeof k_spec_write);
+    TEST_ASSERT_EQUAL_UINT(0, xgo_board_tx_pending(&board));
+    TEST_ASSERT_EQUAL_HEX8(0xFF, xgo_regs_get(&board.regs, XGO_REG_VX));
+    TEST_ASSERT_EQUAL_HEX8(0xFF, wire_read1(0x30));
+}
+
+static void test_two_requests_in_one_write_are_answered_in_order(void)
+{
+    uint8_t both[32], out[64];
+    uint8_t f1[16], f2[16];
+    const uint8_t c1 = 1, c2 = 2;
+    size_t n1 = xgo_frame_encode(XGO_TYPE_READ, 0x01, &c1, 1, f1, sizeof f1);
+    size_t n2 = xgo_frame_encode(XGO_TYPE_READ, 0x30, &c2, 1, f2, sizeof f2);
+    memcpy(both, f1, n1);
+    memcpy(both + n1, f2, n2);
+    send(both, n1 + n2);
+    TEST_ASSERT_EQUAL_UINT(9 + 10, xgo_board_transmit(&board, out, sizeof out));
+    TEST_ASSERT_EQUAL_HEX8(0x01, out[4]);
+    TEST_ASSERT_EQUAL_UINT8(100, out[5]); /* battery */
+    TEST_ASSERT_EQUAL_HEX8(0x30, out[9 + 4]);
+    TEST_ASSERT_EQUAL_HEX8(0x80, out[9 + 5]);
+    TEST_ASSERT_EQUAL_HEX8(0x80, out[9 + 6]);
+}
+
+static void test_garbage_then_request_gets_its_reply(void)
+{
+    const uint8_t garbage[] = {0x00, 0xAA, 0x55, 0x13, 0x55, 0x00, 0x05, 0xFF, 0x12};
+    uint8_t out[64];
+    send(garbage, sizeof garbage);
+    send(k_spec_read, sizeof k_spec_read);
+    TEST_ASSERT_EQUAL_UINT(sizeof k_spec_reply, xgo_board_transmit(&board, out, sizeof out));
+    TEST_ASSERT_EQUAL_HEX8_ARRAY(k_spec_reply, out, sizeof k_spec_reply);
+}
+
+static void test_write_to_read_only_is_rejected_counted_and_traced(void)
+{
+    const uint8_t v = 50;
+    uint32_t c[XGO_DIAG_COUNT];
+    send_write(XGO_REG_BATTERY, &v, 1);
+    TEST_ASSERT_EQUAL_UINT8(100, xgo_regs_get(&board.regs, XGO_REG_BATTERY));
+    xgo_board_counters(&board, c);
+    TEST_ASSERT_EQUAL_UINT32(1, c[XGO_DIAG_REJECTED_READ_ONLY]);
+    TEST_ASSERT_EQUAL_UINT32(1, c[XGO_DIAG_FRAMES_OK]);
+    TEST_ASSERT_EQUAL_UINT(1, n_events);
+    TEST_ASSERT_EQUAL_INT(XGO_TRACE_DROP, ev_kind[0]);
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_READ_ONLY, ev_reason[0]);
+    TEST_ASSERT_EQUAL_UINT(0, xgo_board_tx_pending(&board));
+}
+
+static void test_invalid_value_is_rejected_and_traced(void)
+{
+    const uint8_t pace = 3;
+    send_write(XGO_REG_MOVE_MODE, &pace, 1);
+    TEST_ASSERT_EQUAL_UINT8(0, xgo_regs_get(&board.regs, XGO_REG_MOVE_MODE));
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_BAD_VALUE, ev_reason[0]);
+}
+
+static void test_vendor_writes_for_other_models_do_no_harm(void)
+{
+    static const uint8_t others[] = {0x3F, 0x5F, 0x69, 0x71, 0x72, 0x73, 0x74, 0x75, 0x76,
+                                     0x77, 0x90, 0x91, 0xA1, 0xB0, 0xB1, 0xC0};
+    const uint8_t led[3] = {255, 0, 0};
+    const uint8_t wheels[4] = {0x80, 0x80, 0x80, 0x80};
+    uint32_t c[XGO_DIAG_COUNT];
+    uint8_t before[256];
+    size_t i;
+    memcpy(before, board.regs.mem, sizeof before);
+    for (i = 0; i < sizeof others; i++) {
+        const uint8_t v = 0x08;
+        send_write(others[i], &v, 1);
+    }
+    send_write(0x69, led, sizeof led);
+    send_write(0xB1, wheels, sizeof wheels);
+    TEST_ASSERT_EQUAL_MEMORY(before, board.regs.mem, sizeof before);
+    TEST_ASSERT_EQUAL_UINT(0, xgo_board_tx_pending(&board));
+    xgo_board_counters(&board, c);
+    TEST_ASSERT_EQUAL_UINT32(sizeof others + 2, c[XGO_DIAG_IGNORED_UNMAPPED]);
+    TEST_ASSERT_EQUAL_INT(XGO_TRACE_RX, ev_kind[0]);
+    TEST_ASSERT_EQUAL_UINT8(1, ev_unmapped[0]);
+    TEST_ASSERT_EQUAL_HEX8(0x00, wire_read1(0x71));
+    TEST_ASSERT_EQUAL_HEX8(0x80, wire_read1(0x30)); /* still healthy */
+}
+
+static void test_auto_clear_registers_clear_on_the_next_tick(void)
+{
+    const uint8_t one = 1;
+    send_write(XGO_REG_SET_ZERO, &one, 1);
+    send_write(XGO_REG_STAND, &one, 1);
+    TEST_ASSERT_EQUAL_HEX8(1, wire_read1(XGO_REG_SET_ZERO));
+    TEST_ASSERT_EQUAL_HEX8(1, wire_read1(XGO_REG_STAND));
+    xgo_board_tick(&board);
+    TEST_ASSERT_EQUAL_HEX8(0, wire_read1(XGO_REG_SET_ZERO));
+    TEST_ASSERT_EQUAL_HEX8(0, wire_read1(XGO_REG_STAND));
+    TEST_ASSERT_EQUAL_UINT32(1, board.ticks);
+}
+
+static void test_plain_registers_do_not_clear_on_tick(void)
+{
+    const uint8_t walk = 1;
+    send_write(XGO_REG_GAIT_TYPE, &walk, 1);
+    xgo_board_tick(&board);
+    xgo_board_tick(&board);
+    TEST_ASSERT_EQUAL_HEX8(1, wire_read1(XGO_REG_GAIT_TYPE));
+}
+
+static void test_diagnostic_block_over_the_wire_matches_counters(void)
+{
+    const uint8_t bad_sum[] = {0x55, 0x00, 0x09, 0x00, 0x30, 0xFF, 0x00, 0x00, 0xAA};
+    uint8_t diag[48];
+    uint32_t c[XGO_DIAG_COUNT];
+    size_t i;
+    send(bad_sum, sizeof bad_sum);
+    send(k_spec_write, sizeof k_spec_write);
+    wire_read(0xD0, sizeof diag, diag);
+    xgo_board_counters(&board, c);
+    /* The read itself was counted before the snapshot was taken. */
+    TEST_ASSERT_EQUAL_UINT32(2, c[XGO_DIAG_FRAMES_OK]);
+    TEST_ASSERT_EQUAL_UINT32(1, c[XGO_DIAG_BAD_CHECKSUM]);
+    for (i = 0; i < XGO_DIAG_COUNT; i++) {
+        const uint32_t v = (uint32_t)diag[4 * i] | (uint32_t)diag[4 * i + 1] << 8 |
+                           (uint32_t)diag[4 * i + 2] << 16 | (uint32_t)diag[4 * i + 3] << 24;
+        TEST_ASSERT_EQUAL_UINT32_MESSAGE(c[i], v, xgo_diag_name((xgo_diag_t)i));
+    }
+    TEST_ASSERT_EQUAL_STRING("frames_ok", xgo_diag_name(XGO_DIAG_FRAMES_OK));
+    TEST_ASSERT_EQUAL_STRING("tx_overflow", xgo_diag_name(XGO_DIAG_TX_OVERFLOW));
+    TEST_ASSERT_EQUAL_STRING("unknown", xgo_diag_name(XGO_DIAG_COUNT));
+}
+
+static void test_transmit_overflow_drops_whole_replies(void)
+{
+    uint8_t out[XGO_TX_BUFFER_SIZE + 256];
+    const size_t reply = 247 + 8;
+    const size_t fit = XGO_TX_BUFFER_SIZE / reply;
+    size_t i, n;
+    uint32_t c[XGO_DIAG_COUNT];
+    for (i = 0; i < fit + 3; i++) {
+        send_read(0x00, 247);
+    }
+    xgo_board_counters(&board, c);
+    TEST_ASSERT_EQUAL_UINT32(3, c[XGO_DIAG_TX_OVERFLOW]);
+    n = xgo_board_transmit(&board, out, sizeof out);
+    TEST_ASSERT_EQUAL_UINT(fit * reply, n);
+    for (i = 0; i < fit; i++) {
+        TEST_ASSERT_EQUAL_HEX8(0x55, out[i * reply]);
+        TEST_ASSERT_EQUAL_HEX8(0xAA, out[i * reply + reply - 1]);
+    }
+    /* Room again: the next request is answered. */
+    TEST_ASSERT_EQUAL_UINT8(100, wire_read1(XGO_REG_BATTERY));
+}
+
+static void test_partial_transmit_keeps_order_across_wrap(void)
+{
+    uint8_t out[8], got[64];
+    size_t i, n, got_n;
+    /* 100 replies of 20 bytes drained 7 at a time: the ring wraps twice. */
+    for (i = 0; i < 100; i++) {
+        send_read(0x50, 12);
+        got_n = 0;
+        while ((n = xgo_board_transmit(&board, out, 7)) > 0) {
+            TEST_ASSERT_LESS_OR_EQUAL_UINT(sizeof got, got_n + n);
+            memcpy(got + got_n, out, n);
+            got_n += n;
+        }
+        TEST_ASSERT_EQUAL_UINT(sizeof k_spec_reply, got_n);
+        TEST_ASSERT_EQUAL_HEX8_ARRAY(k_spec_reply, got, sizeof k_spec_reply);
+    }
+}
+
+static void test_lite_profile_identity(void)
+{
+    xgo_board_config_t cfg;
+    uint8_t fw[10];
+    xgo_board_default_config(&cfg);
+    cfg.model = XGO_MODEL_LITE;
+    cfg.battery_pct = 37;
+    xgo_board_init(&board, &cfg);
+    TEST_ASSERT_EQUAL_HEX8(0x01, wire_read1(XGO_REG_VERSION));
+    TEST_ASSERT_EQUAL_UINT8(37, wire_read1(XGO_REG_BATTERY));
+    wire_read(0x07, 10, fw);
+    TEST_ASSERT_EQUAL_HEX8('L', fw[0]);
+}
+
+static void test_mini_firmware_starts_with_M_and_is_ascii(void)
+{
+    uint8_t fw[10];
+    size_t i;
+    wire_read(0x07, 10, fw);
+    TEST_ASSERT_EQUAL_HEX8('M', fw[0]);
+    TEST_ASSERT_NOT_EQUAL('W', fw[1]); /* "MW" would select the mini2 SW parameters */
+    for (i = 0; i < 10; i++) {
+        TEST_ASSERT_TRUE(fw[i] == 0 || (fw[i] >= 0x20 && fw[i] < 0x7F));
+    }
+}
+
+static void test_timeout_through_the_board(void)
+{
+    const uint8_t partial[] = {0x55, 0x00, 0x30, 0x00}; /* a write claiming 48 bytes */
+    uint8_t out[64];
+    xgo_board_receive(&board, partial, sizeof partial, 10);
+    xgo_board_receive(&board, k_spec_read, sizeof k_spec_read, 12);
+    TEST_ASSERT_EQUAL_UINT(0, xgo_board_tx_pending(&board));
+    xgo_board_poll(&board, 12 + XGO_PARSER_DEFAULT_TIMEOUT_MS);
+    TEST_ASSERT_EQUAL_UINT(sizeof k_spec_reply, xgo_board_transmit(&board, out, sizeof out));
+    TEST_ASSERT_EQUAL_HEX8_ARRAY(k_spec_reply, out, sizeof k_spec_reply);
+}
+
+static void test_read_requests_never_change_state(void)
+{
+    uint8_t before[256], out[256];
+    unsigned a;
+    memcpy(before, board.regs.mem, sizeof before);
+    for (a = 0; a < 0xD0; a += 16) {
+        wire_read((uint8_t)a, 16, out);
+    }
+    TEST_ASSERT_EQUAL_MEMORY(before, board.regs.mem, 0xD0);
+}
+
+int main(void)
+{
+    UNITY_BEGIN();
+    RUN_TEST(test_spec_read_example_gets_the_spec_reply);
+    RUN_TEST(test_spec_write_example_sets_vx_and_sends_nothing);
+    RUN_TEST(test_two_requests_in_one_write_are_answered_in_order);
+    RUN_TEST(test_garbage_then_request_gets_its_reply);
+    RUN_TEST(test_write_to_read_only_is_rejected_counted_and_traced);
+    RUN_TEST(test_invalid_value_is_rejected_and_traced);
+    RUN_TEST(test_vendor_writes_for_other_models_do_no_harm);
+    RUN_TEST(test_auto_clear_registers_clear_on_the_next_tick);
+    RUN_TEST(test_plain_registers_do_not_clear_on_tick);
+    RUN_TEST(test_diagnostic_block_over_the_wire_matches_counters);
+    RUN_TEST(test_transmit_overflow_drops_whole_replies);
+    RUN_TEST(test_partial_transmit_keeps_order_across_wrap);
+    RUN_TEST(test_lite_profile_identity);
+    RUN_TEST(test_mini_firmware_starts_with_M_and_is_ascii);
+    RUN_TEST(test_timeout_through_the_board);
+    RUN_TEST(test_read_requests_never_change_state);
+    return UNITY_END();
+}

@@ -1,0 +1,402 @@
+/*
+ * Register file: every documented register's access, initial value and valid
+ * set; whole-frame validation; the computed views (firmware window, float32
+ * attitude, diagnostic block); unmapped addresses.
+ */
+#include <math.h>
+#include <string.h>
+
+#include "unity.h"
+#include "xgo/regs.h"
+
+static xgo_regs_t regs;
+
+void setUp(void)
+{
+    xgo_regs_init(&regs, "M-EMU-0.1", 0x00);
+}
+
+void tearDown(void)
+{
+}
+
+/* The spec's MemTable (with the errata applied), written out independently
+ * of the descriptor table: address, access, initial value. */
+typedef struct {
+    uint8_t addr;
+    uint8_t access;
+    uint8_t initial;
+} spec_reg_t;
+
+static const spec_reg_t k_spec[] = {
+    {0x00, XGO_ACCESS_R, 0x00},  {0x01, XGO_ACCESS_R, 100},   {0x02, XGO_ACCESS_R, 0x00},
+    {0x03, XGO_ACCESS_W, 0x00},  {0x04, XGO_ACCESS_W, 0x00},  {0x09, XGO_ACCESS_RW, 0x00},
+    {0x20, XGO_ACCESS_RW, 0x00}, {0x21, XGO_ACCESS_W, 0x00},  {0x30, XGO_ACCESS_RW, 0x80},
+    {0x31, XGO_ACCESS_RW, 0x80}, {0x32, XGO_ACCESS_RW, 0x80}, {0x33, XGO_ACCESS_RW, 0x80},
+    {0x34, XGO_ACCESS_RW, 0x80}, {0x35, XGO_ACCESS_RW, 0x80}, {0x36, XGO_ACCESS_RW, 0x80},
+    {0x37, XGO_ACCESS_RW, 0x80}, {0x38, XGO_ACCESS_RW, 0x80}, {0x39, XGO_ACCESS_RW, 0x00},
+    {0x3A, XGO_ACCESS_RW, 0x00}, {0x3B, XGO_ACCESS_RW, 0x00}, {0x3C, XGO_ACCESS_RW, 0x00},
+    {0x3D, XGO_ACCESS_RW, 0x00}, {0x3E, XGO_ACCESS_W, 0x00},  {0x40, XGO_ACCESS_RW, 0x80},
+    {0x41, XGO_ACCESS_RW, 0x80}, {0x42, XGO_ACCESS_RW, 0x80}, {0x43, XGO_ACCESS_RW, 0x80},
+    {0x44, XGO_ACCESS_RW, 0x80}, {0x45, XGO_ACCESS_RW, 0x80}, {0x46, XGO_ACCESS_RW, 0x80},
+    {0x47, XGO_ACCESS_RW, 0x80}, {0x48, XGO_ACCESS_RW, 0x80}, {0x49, XGO_ACCESS_RW, 0x80},
+    {0x4A, XGO_ACCESS_RW, 0x80}, {0x4B, XGO_ACCESS_RW, 0x80}, {0x50, XGO_ACCESS_RW, 0x80},
+    {0x51, XGO_ACCESS_RW, 0x80}, {0x52, XGO_ACCESS_RW, 0x80}, {0x53, XGO_ACCESS_RW, 0x80},
+    {0x54, XGO_ACCESS_RW, 0x80}, {0x55, XGO_ACCESS_RW, 0x80}, {0x56, XGO_ACCESS_RW, 0x80},
+    {0x57, XGO_ACCESS_RW, 0x80}, {0x58, XGO_ACCESS_RW, 0x80}, {0x59, XGO_ACCESS_RW, 0x80},
+    {0x5A, XGO_ACCESS_RW, 0x80}, {0x5B, XGO_ACCESS_RW, 0x80}, {0x5C, XGO_ACCESS_RW, 0x80},
+    {0x5D, XGO_ACCESS_W, 0x00},  {0x61, XGO_ACCESS_RW, 0x00}, {0x62, XGO_ACCESS_R, 0x80},
+    {0x63, XGO_ACCESS_R, 0x80},  {0x64, XGO_ACCESS_R, 0x80},  {0x80, XGO_ACCESS_RW, 0x00},
+    {0x81, XGO_ACCESS_RW, 0x00}, {0x82, XGO_ACCESS_RW, 0x00},
+};
+
+/* Valid sets written out independently: returns 1 if v may be written. */
+static int spec_valid(uint8_t addr, uint8_t v)
+{
+    switch (addr) {
+    case 0x03: case 0x04: case 0x21: case 0x5D: case 0x61: return v <= 1;
+    case 0x09: return v <= 3;
+    case 0x3D: return v <= 2;
+    case 0x20: return v == 0 || v == 1 || (v >= 0x11 && v <= 0x14) || (v >= 0x21 && v <= 0x24);
+    case 0x3E: return v <= 24 || v == 255;
+    default: return 1;
+    }
+}
+
+static uint8_t read1(uint8_t addr)
+{
+    uint8_t v = 0xEE;
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_read(&regs, addr, 1, &v));
+    return v;
+}
+
+static void test_every_spec_register_has_its_access_and_initial_value(void)
+{
+    size_t i;
+    for (i = 0; i < sizeof k_spec / sizeof k_spec[0]; i++) {
+        const xgo_reg_desc_t *d = xgo_reg_find(k_spec[i].addr);
+        TEST_ASSERT_NOT_NULL_MESSAGE(d, "register missing from the table");
+        TEST_ASSERT_EQUAL_UINT8_MESSAGE(k_spec[i].access, d->access, d->name);
+        TEST_ASSERT_EQUAL_HEX8_MESSAGE(k_spec[i].initial, read1(k_spec[i].addr), d->name);
+    }
+}
+
+static void test_every_value_of_every_register_is_accepted_or_rejected_whole(void)
+{
+    size_t i;
+    unsigned v;
+    for (i = 0; i < sizeof k_spec / sizeof k_spec[0]; i++) {
+        const uint8_t addr = k_spec[i].addr;
+        for (v = 0; v < 256; v++) {
+            xgo_regs_t before;
+            const uint8_t value = (uint8_t)v;
+            xgo_drop_reason_t why;
+            setUp();
+            before = regs;
+            why = xgo_regs_write(&regs, addr, &value, 1);
+            if (k_spec[i].access == XGO_ACCESS_R) {
+                TEST_ASSERT_EQUAL_INT(XGO_DROP_READ_ONLY, why);
+            } else if (!spec_valid(addr, value)) {
+                TEST_ASSERT_EQUAL_INT(XGO_DROP_BAD_VALUE, why);
+            } else {
+                TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, why);
+                TEST_ASSERT_EQUAL_HEX8(value, read1(addr));
+                TEST_ASSERT_TRUE(xgo_regs_take_written(&regs, addr));
+                TEST_ASSERT_FALSE(xgo_regs_take_written(&regs, addr));
+                continue;
+            }
+            /* Rejected: not a single byte changed. */
+            TEST_ASSERT_EQUAL_MEMORY(before.mem, regs.mem, sizeof regs.mem);
+            TEST_ASSERT_EQUAL_MEMORY(before.written, regs.written, sizeof regs.written);
+        }
+    }
+}
+
+static void test_frame_with_one_bad_byte_changes_nothing(void)
+{
+    /* vx, vy, vyaw ok ... but 0x3D (pace) = 7 is invalid. */
+    const uint8_t data[14] = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 7};
+    xgo_regs_t before = regs;
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_BAD_VALUE, xgo_regs_write(&regs, 0x30, data, sizeof data));
+    TEST_ASSERT_EQUAL_MEMORY(before.mem, regs.mem, sizeof regs.mem);
+    TEST_ASSERT_EQUAL_UINT32(1, regs.stats.rejected_value);
+    TEST_ASSERT_EQUAL_UINT32(0, regs.stats.writes_ok);
+}
+
+static void test_frame_touching_read_only_changes_nothing(void)
+{
+    /* 0x5D..0x64 spans writable registers and the read-only IMU. */
+    const uint8_t data[8] = {0, 0, 0, 0, 1, 0, 0, 0};
+    xgo_regs_t before = regs;
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_READ_ONLY, xgo_regs_write(&regs, 0x5D, data, sizeof data));
+    TEST_ASSERT_EQUAL_MEMORY(before.mem, regs.mem, sizeof regs.mem);
+    TEST_ASSERT_EQUAL_UINT32(1, regs.stats.rejected_read_only);
+}
+
+static void test_multi_byte_write_applies_all(void)
+{
+    const uint8_t servo[12] = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12};
+    uint8_t back[12];
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_write(&regs, 0x50, servo, sizeof servo));
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_read(&regs, 0x50, sizeof back, back));
+    TEST_ASSERT_EQUAL_HEX8_ARRAY(servo, back, sizeof servo);
+    TEST_ASSERT_EQUAL_UINT32(1, regs.stats.writes_ok);
+}
+
+static void test_unmapped_addresses_read_zero_and_ignore_writes(void)
+{
+    /* What the vendor library writes on other models. */
+    static const uint8_t others[] = {0x3F, 0x5F, 0x69, 0x6A, 0x6B, 0x71, 0x72, 0x73, 0x74, 0x75,
+                                     0x76, 0x77, 0x90, 0x91, 0x92, 0x93, 0xA1, 0xB0, 0xB1, 0xC0};
+    size_t i;
+    for (i = 0; i < sizeof others; i++) {
+        const uint8_t v = 0x5A;
+        TEST_ASSERT_NULL(xgo_reg_find(others[i]));
+        TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_write(&regs, others[i], &v, 1));
+        TEST_ASSERT_EQUAL_HEX8(0x00, read1(others[i]));
+    }
+    TEST_ASSERT_EQUAL_UINT32(sizeof others, regs.stats.ignored_unmapped);
+    TEST_ASSERT_EQUAL_STRING("-", xgo_reg_name(0xC0));
+}
+
+static void test_write_across_a_gap_applies_the_mapped_part(void)
+{
+    /* 0x4B (leg4_z), 0x4C..0x4F (none), 0x50 (servo11) */
+    const uint8_t data[6] = {0x11, 0x22, 0x33, 0x44, 0x55, 0x66};
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_write(&regs, 0x4B, data, sizeof data));
+    TEST_ASSERT_EQUAL_HEX8(0x11, read1(0x4B));
+    TEST_ASSERT_EQUAL_HEX8(0x00, read1(0x4D));
+    TEST_ASSERT_EQUAL_HEX8(0x66, read1(0x50));
+    TEST_ASSERT_EQUAL_UINT32(1, regs.stats.ignored_unmapped);
+}
+
+static void test_firmware_window_and_gait_type_share_0x09(void)
+{
+    const uint8_t trot_walk = 1;
+    uint8_t fw[10];
+    static const uint8_t expected[10] = {'M', '-', 'E', 'M', 'U', '-', '0', '.', '1', 0};
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_write(&regs, 0x09, &trot_walk, 1));
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_read(&regs, 0x07, 10, fw));
+    TEST_ASSERT_EQUAL_HEX8_ARRAY(expected, fw, 10);
+    TEST_ASSERT_EQUAL_HEX8(1, read1(0x09));
+    TEST_ASSERT_EQUAL_HEX8('M', read1(0x07));
+    TEST_ASSERT_EQUAL_STRING("gait_type", xgo_reg_name(0x09));
+    TEST_ASSERT_EQUAL_STRING("firmware", xgo_reg_name(0x0A));
+}
+
+static void test_firmware_is_read_only(void)
+{
+    const uint8_t x = 'X';
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_READ_ONLY, xgo_regs_write(&regs, 0x07, &x, 1));
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_READ_ONLY, xgo_regs_write(&regs, 0x10, &x, 1));
+}
+
+static void test_lite_identity(void)
+{
+    uint8_t fw[10];
+    xgo_regs_init(&regs, "L-EMU-0.1", 0x01);
+    TEST_ASSERT_EQUAL_HEX8(0x01, read1(0x02));
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_read(&regs, 0x07, 10, fw));
+    TEST_ASSERT_EQUAL_HEX8('L', fw[0]);
+}
+
+static void read_name(char out[11])
+{
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_read(&regs, 0x13, 10, (uint8_t *)out));
+    out[10] = '\0';
+}
+
+static void test_bluetooth_name(void)
+{
+    char name[11];
+    read_name(name);
+    TEST_ASSERT_EQUAL_STRING("XGOMINI", name);
+
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_write(&regs, 0x13, (const uint8_t *)"Rex", 3));
+    read_name(name);
+    TEST_ASSERT_EQUAL_STRING("Rex", name); /* shorter write sets the whole name */
+    TEST_ASSERT_EQUAL_MEMORY("Rex\0\0\0\0\0\0\0", name, 10);
+
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE,
+                          xgo_regs_write(&regs, 0x13, (const uint8_t *)"0123456789", 10));
+    read_name(name);
+    TEST_ASSERT_EQUAL_STRING("0123456789", name);
+}
+
+static void test_bluetooth_name_rejects_bad_input(void)
+{
+    const uint8_t chinese[3] = {0xE7, 0x8B, 0x97};
+    const uint8_t with_nul[3] = {'a', 0x00, 'b'};
+    char name[11];
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_BAD_VALUE, xgo_regs_write(&regs, 0x13, chinese, 3));
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_BAD_VALUE, xgo_regs_write(&regs, 0x13, with_nul, 3));
+    /* starting in the middle of the name */
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_BAD_VALUE, xgo_regs_write(&regs, 0x15, (const uint8_t *)"ab", 2));
+    read_name(name);
+    TEST_ASSERT_EQUAL_STRING("XGOMINI", name);
+}
+
+static void test_restore_initial_keeps_nonvolatile_and_identity(void)
+{
+    const uint8_t fast = 0xFF;
+    char name[11];
+    xgo_regs_write(&regs, 0x13, (const uint8_t *)"Rex", 3);
+    xgo_regs_write(&regs, 0x30, &fast, 1);
+    xgo_regs_set(&regs, XGO_REG_BATTERY, 42);
+    xgo_regs_restore_initial(&regs);
+    TEST_ASSERT_EQUAL_HEX8(0x80, read1(0x30));
+    TEST_ASSERT_EQUAL_UINT8(42, read1(0x01));
+    read_name(name);
+    TEST_ASSERT_EQUAL_STRING("Rex", name);
+    TEST_ASSERT_FALSE(xgo_regs_take_written(&regs, 0x30));
+}
+
+static void test_read_ranges(void)
+{
+    uint8_t out[XGO_FRAME_MAX_DATA];
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_BAD_RANGE, xgo_regs_read(&regs, 0x00, 0, out));
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_BAD_RANGE, xgo_regs_read(&regs, 0x00, 248, out));
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_BAD_RANGE, xgo_regs_read(&regs, 0xFF, 2, out));
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_read(&regs, 0xFF, 1, out));
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_read(&regs, 0x09, 247, out));
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_BAD_RANGE, xgo_regs_write(&regs, 0xFF, out, 2));
+}
+
+/* --- computed views ---------------------------------------------------- */
+
+static uint32_t float_bits(float f)
+{
+    uint32_t u;
+    memcpy(&u, &f, sizeof u);
+    return u;
+}
+
+static void test_float32_bits_match_the_compiler_for_every_millidegree(void)
+{
+    int32_t m;
+    for (m = -400000; m <= 400000; m++) {
+        /* Double rounding (exact -> double -> float) cannot differ from
+         * direct rounding here: m/1000 is never within 2^-53 (relative) of a
+         * float midpoint unless equal to it (the gap is >= 1/(1000*2^24)). */
+        const uint32_t want = float_bits((float)((double)m / 1000.0));
+        if (want != xgo_mdeg_to_float32_bits(m)) {
+            TEST_ASSERT_EQUAL_HEX32_MESSAGE(want, xgo_mdeg_to_float32_bits(m), "mdeg mismatch");
+        }
+    }
+    TEST_ASSERT_EQUAL_HEX32(float_bits((float)(2147483647.0 / 1000.0)),
+                            xgo_mdeg_to_float32_bits(INT32_MAX));
+    TEST_ASSERT_EQUAL_HEX32(float_bits((float)(-2147483648.0 / 1000.0)),
+                            xgo_mdeg_to_float32_bits(INT32_MIN));
+    TEST_ASSERT_EQUAL_HEX32(0, xgo_mdeg_to_float32_bits(0));
+    /* Exact ties between two floats (only reachable near 2^31): ties-to-even. */
+    TEST_ASSERT_EQUAL_HEX32(float_bits((float)(2097152125.0 / 1000.0)),
+                            xgo_mdeg_to_float32_bits(2097152125));
+    TEST_ASSERT_EQUAL_HEX32(float_bits((float)(2097152375.0 / 1000.0)),
+                            xgo_mdeg_to_float32_bits(2097152375));
+    TEST_ASSERT_EQUAL_HEX32(float_bits((float)(-2097152375.0 / 1000.0)),
+                            xgo_mdeg_to_float32_bits(-2097152375));
+}
+
+static void test_four_byte_attitude_reads_are_float32_le(void)
+{
+    uint8_t out[4];
+    float f;
+    xgo_regs_set_attitude(&regs, 12340, -5500, 179999);
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_read(&regs, 0x62, 4, out));
+    memcpy(&f, out, 4); /* host is little-endian (x86-64 / ARM) */
+    TEST_ASSERT_DOUBLE_WITHIN(1e-4, 12.34, f);
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_read(&regs, 0x63, 4, out));
+    memcpy(&f, out, 4);
+    TEST_ASSERT_DOUBLE_WITHIN(1e-4, -5.5, f);
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_read(&regs, 0x64, 4, out));
+    memcpy(&f, out, 4);
+    TEST_ASSERT_DOUBLE_WITHIN(1e-3, 179.999, f);
+}
+
+static void test_one_byte_attitude_reads_are_the_byte_encoding(void)
+{
+    uint8_t out[3];
+    xgo_regs_set_attitude(&regs, 90000, -45000, -180000);
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_read(&regs, 0x62, 3, out));
+    TEST_ASSERT_EQUAL_HEX8(0x80 + 64, out[0]);
+    TEST_ASSERT_EQUAL_HEX8(0x80 - 32, out[1]);
+    TEST_ASSERT_EQUAL_HEX8(0x00, out[2]);
+}
+
+static void test_angle_byte_encoding_against_reference(void)
+{
+    int32_t m;
+    for (m = -200000; m <= 200000; m += 7) {
+        double ref = 128.0 + (double)m / 1000.0 * 128.0 / 180.0;
+        long want = (long)floor(ref + 0.5);
+        if (m < 0 && fabs(ref - floor(ref) - 0.5) < 1e-12) {
+            want = (long)floor(ref); /* half away from zero for negatives */
+        }
+        if (want < 0) want = 0;
+        if (want > 255) want = 255;
+        TEST_ASSERT_EQUAL_UINT8((uint8_t)want, xgo_angle_to_byte(m));
+    }
+    TEST_ASSERT_EQUAL_UINT8(0x80, xgo_angle_to_byte(0));
+    TEST_ASSERT_EQUAL_UINT8(0, xgo_angle_to_byte(INT32_MIN));
+    TEST_ASSERT_EQUAL_UINT8(255, xgo_angle_to_byte(INT32_MAX));
+}
+
+static void test_diag_block_is_u32_little_endian_and_read_only(void)
+{
+    uint32_t counters[XGO_DIAG_COUNT];
+    uint8_t out[4 * XGO_DIAG_COUNT];
+    size_t i;
+    for (i = 0; i < XGO_DIAG_COUNT; i++) {
+        counters[i] = 0x01020304u * (uint32_t)(i + 1);
+    }
+    xgo_regs_set_diag(&regs, counters);
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_read(&regs, 0xD0, sizeof out, out));
+    for (i = 0; i < XGO_DIAG_COUNT; i++) {
+        const uint32_t v = (uint32_t)out[4 * i] | (uint32_t)out[4 * i + 1] << 8 |
+                           (uint32_t)out[4 * i + 2] << 16 | (uint32_t)out[4 * i + 3] << 24;
+        TEST_ASSERT_EQUAL_HEX32(counters[i], v);
+    }
+    TEST_ASSERT_EQUAL_UINT(0x100, 0xD0 + sizeof out);
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_READ_ONLY, xgo_regs_write(&regs, 0xE0, out, 1));
+}
+
+static void test_table_is_consistent(void)
+{
+    size_t i;
+    TEST_ASSERT_GREATER_OR_EQUAL_UINT(sizeof k_spec / sizeof k_spec[0], xgo_reg_table_size());
+    for (i = 0; i < xgo_reg_table_size(); i++) {
+        const xgo_reg_desc_t *d = xgo_reg_table_entry(i);
+        TEST_ASSERT_NOT_NULL(d->name);
+        TEST_ASSERT_TRUE(d->width >= 1 && (unsigned)d->addr + d->width <= 256u);
+        if (d->flags & XGO_REGF_AUTO_CLEAR) {
+            TEST_ASSERT_EQUAL_UINT8(0, d->initial);
+        }
+    }
+    TEST_ASSERT_NULL(xgo_reg_table_entry(xgo_reg_table_size()));
+}
+
+int main(void)
+{
+    UNITY_BEGIN();
+    RUN_TEST(test_every_spec_register_has_its_access_and_initial_value);
+    RUN_TEST(test_every_value_of_every_register_is_accepted_or_rejected_whole);
+    RUN_TEST(test_frame_with_one_bad_byte_changes_nothing);
+    RUN_TEST(test_frame_touching_read_only_changes_nothing);
+    RUN_TEST(test_multi_byte_write_applies_all);
+    RUN_TEST(test_unmapped_addresses_read_zero_and_ignore_writes);
+    RUN_TEST(test_write_across_a_gap_applies_the_mapped_part);
+    RUN_TEST(test_firmware_window_and_gait_type_share_0x09);
+    RUN_TEST(test_firmware_is_read_only);
+    RUN_TEST(test_lite_identity);
+    RUN_TEST(test_bluetooth_name);
+    RUN_TEST(test_bluetooth_name_rejects_bad_input);
+    RUN_TEST(test_restore_initial_keeps_nonvolatile_and_identity);
+    RUN_TEST(test_read_ranges);
+    RUN_TEST(test_float32_bits_match_the_compiler_for_every_millidegree);
+    RUN_TEST(test_four_byte_attitude_reads_are_float32_le);
+    RUN_TEST(test_one_byte_attitude_reads_are_the_byte_encoding);
+    RUN_TEST(test_angle_byte_encoding_against_reference);
+    RUN_TEST(test_diag_block_is_u32_little_endian_and_read_only);
+    RUN_TEST(test_table_is_consistent);
+    return UNITY_END();
+}
