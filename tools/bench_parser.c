@@ -8,6 +8,7 @@
  *
  * Usage: bench_parser [passes]   (default 20)
  */
+#define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
 #include <stdlib.h>
 #include <time.h>
