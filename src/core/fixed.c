@@ -1,0 +1,494 @@
+/*
+ * fixed.c - integer-only math (see xgo/fixed.h and docs/fixed-point.md).
+ *
+ * No floating point anywhere: the tables below were generated offline (the
+ * generator is in docs/fixed-point.md) and are checked against libm by
+ * test/test_fixed.c through the functions that use them.
+ */
+#include "xgo/fixed.h"
+
+/* The shifts below rely on >> of a negative value being arithmetic (GCC and
+ * Clang guarantee it). Refuse to compile where it is not. */
+typedef char xgo_fixed_asr_check_[((-1 >> 1) == -1 && ((int64_t)-1 >> 1) == -1) ? 1 : -1];
+
+/* ------------------------------------------------------------ saturation */
+
+int32_t xgo_sat32(int64_t v)
+{
+    if (v > INT32_MAX) {
+        return INT32_MAX;
+    }
+    if (v < INT32_MIN) {
+        return INT32_MIN;
+    }
+    return (int32_t)v;
+}
+
+int32_t xgo_sat_add(int32_t a, int32_t b)
+{
+    return xgo_sat32((int64_t)a + b);
+}
+
+int32_t xgo_sat_sub(int32_t a, int32_t b)
+{
+    return xgo_sat32((int64_t)a - b);
+}
+
+int32_t xgo_sat_neg(int32_t a)
+{
+    return a == INT32_MIN ? INT32_MAX : -a;
+}
+
+int32_t xgo_sat_abs(int32_t a)
+{
+    return a < 0 ? xgo_sat_neg(a) : a;
+}
+
+int32_t xgo_mul_q(int32_t a, int32_t b, unsigned q)
+{
+    int64_t p = (int64_t)a * b; /* |p| <= 2^62: exact */
+    if (q > 31u) {
+        q = 31u;
+    }
+    if (q > 0u) {
+        /* p + 2^(q-1) cannot overflow: |p| <= 2^62, the half is <= 2^30. */
+        p = (p + ((int64_t)1 << (q - 1u))) >> q;
+    }
+    return xgo_sat32(p);
+}
+
+/* Rounded quotient n / d for d > 0, ties away from zero; |n| < 2^63. */
+static int64_t div_round_pos(int64_t n, int64_t d)
+{
+    if (n >= 0) {
+        return (n + d / 2) / d;
+    }
+    return -((-n + d / 2) / d);
+}
+
+static int32_t sat_div(int64_t n, int64_t d)
+{
+    if (d == 0) {
+        return n > 0 ? INT32_MAX : (n < 0 ? INT32_MIN : 0);
+    }
+    if (d < 0) {
+        n = -n;
+        d = -d;
+    }
+    /* Saturate before dividing so the rounding add cannot overflow: the
+     * quotient exceeds int32 whenever |n| >= 2^31 * d. */
+    if (n >= 0 && (uint64_t)n / (uint64_t)d >= 0x80000000u) {
+        return INT32_MAX;
+    }
+    if (n < 0 && (uint64_t)(-n) / (uint64_t)d > 0x80000000u) {
+        return INT32_MIN;
+    }
+    return xgo_sat32(div_round_pos(n, d));
+}
+
+int32_t xgo_div_q(int32_t a, int32_t b, unsigned q)
+{
+    if (q > 31u) {
+        q = 31u;
+    }
+    /* |a * 2^q| <= 2^62 */
+    return sat_div((int64_t)a * ((int64_t)1 << q), b);
+}
+
+int32_t xgo_muldiv(int32_t a, int32_t b, int32_t c)
+{
+    return sat_div((int64_t)a * b, c);
+}
+
+/* ------------------------------------------------------------ square root */
+
+uint32_t xgo_isqrt32(uint32_t x)
+{
+    uint32_t r = 0;
+    uint32_t bit = 1u << 30;
+    while (bit > x) {
+        bit >>= 2;
+    }
+    while (bit != 0u) {
+        if (x >= r + bit) {
+            x -= r + bit;
+            r = (r >> 1) + bit;
+        } else {
+            r >>= 1;
+        }
+        bit >>= 2;
+    }
+    return r;
+}
+
+uint32_t xgo_isqrt64(uint64_t x)
+{
+    uint64_t r = 0;
+    uint64_t bit = (uint64_t)1 << 62;
+    if (x <= 0xFFFFFFFFu) {
+        return xgo_isqrt32((uint32_t)x);
+    }
+    while (bit > x) {
+        bit >>= 2;
+    }
+    while (bit != 0u) {
+        if (x >= r + bit) {
+            x -= r + bit;
+            r = (r >> 1) + bit;
+        } else {
+            r >>= 1;
+        }
+        bit >>= 2;
+    }
+    return (uint32_t)r;
+}
+
+xgo_q16_t xgo_q16_sqrt(xgo_q16_t x)
+{
+    uint64_t v;
+    uint32_t r;
+    if (x <= 0) {
+        return 0;
+    }
+    v = (uint64_t)(uint32_t)x << 16; /* sqrt(x / 2^16) * 2^16 = sqrt(x * 2^16) */
+    r = xgo_isqrt64(v);
+    /* round: (r + 1/2)^2 = r^2 + r + 1/4, so round up iff v - r^2 > r */
+    if (v - (uint64_t)r * r > r) {
+        ++r;
+    }
+    return (xgo_q16_t)r; /* <= sqrt(2^47) < 2^24 */
+}
+
+/* ------------------------------------------------------------ angles */
+
+/* One mdeg is 2^32 / 360000 = 11930 + 5228/11250 BAM. The integer part is
+ * applied modulo 2^32 (exact), the fraction as a Q32 multiplier:
+ * round(5228/11250 * 2^32). */
+#define MDEG_TO_BAM_INT 11930u
+#define MDEG_TO_BAM_FRAC_Q32 1995919024LL
+
+xgo_bam_t xgo_mdeg_to_bam(int32_t mdeg)
+{
+    uint32_t whole = (uint32_t)mdeg * MDEG_TO_BAM_INT; /* modulo 2^32 */
+    /* |mdeg| <= 2^31, multiplier < 2^31: the product fits in int64; the
+     * multiplier's rounding adds at most 0.25 LSB at |mdeg| = 2^31. */
+    int64_t frac = ((int64_t)mdeg * MDEG_TO_BAM_FRAC_Q32 + ((int64_t)1 << 31)) >> 32;
+    return whole + (uint32_t)(uint64_t)frac;
+}
+
+int32_t xgo_bam_signed(xgo_bam_t a)
+{
+    if (a < 0x80000000u) {
+        return (int32_t)a;
+    }
+    return -(int32_t)(0xFFFFFFFFu - a) - 1;
+}
+
+int32_t xgo_bam_to_mdeg(xgo_bam_t a)
+{
+    int64_t p = (int64_t)xgo_bam_signed(a) * XGO_MDEG_PER_TURN; /* |p| < 2^50 */
+    return (int32_t)((p + ((int64_t)1 << 31)) >> 32);
+}
+
+/* ------------------------------------------------------------ sin / cos */
+
+/* sin(k * pi / 256) in Q30, k = 0..128: a quarter wave at 128 intervals. */
+static const int32_t sin_tab[129] = {
+    0, 13176464, 26350943, 39521455, 52686014, 65842639,
+    78989349, 92124163, 105245103, 118350194, 131437462, 144504935,
+    157550647, 170572633, 183568930, 196537583, 209476638, 222384147,
+    235258165, 248096755, 260897982, 273659918, 286380643, 299058239,
+    311690799, 324276419, 336813204, 349299266, 361732726, 374111709,
+    386434353, 398698801, 410903207, 423045732, 435124548, 447137835,
+    459083786, 470960600, 482766489, 494499676, 506158392, 517740883,
+    529245404, 540670223, 552013618, 563273883, 574449320, 585538248,
+    596538995, 607449906, 618269338, 628995660, 639627258, 650162530,
+    660599890, 670937767, 681174602, 691308855, 701339000, 711263525,
+    721080937, 730789757, 740388522, 749875788, 759250125, 768510122,
+    777654384, 786681534, 795590213, 804379079, 813046808, 821592095,
+    830013654, 838310216, 846480531, 854523370, 862437520, 870221790,
+    877875009, 885396022, 892783698, 900036924, 907154608, 914135678,
+    920979082, 927683790, 934248793, 940673101, 946955747, 953095785,
+    959092290, 964944360, 970651112, 976211688, 981625251, 986890984,
+    992008094, 996975812, 1001793390, 1006460100, 1010975242, 1015338134,
+    1019548121, 1023604567, 1027506862, 1031254418, 1034846671, 1038283080,
+    1041563127, 1044686319, 1047652185, 1050460278, 1053110176, 1055601479,
+    1057933813, 1060106826, 1062120190, 1063973603, 1065666786, 1067199483,
+    1068571464, 1069782521, 1070832474, 1071721163, 1072448455, 1073014240,
+    1073418433, 1073660973, 1073741824,
+};
+
+/* pi/2 * 2^34: converts a BAM offset d to radians in Q34
+ * (d * 2pi / 2^32 * 2^34 = d * pi/2 * 2^4, done as d * PI_2_Q34 / 2^30). */
+#define PI_2_Q34 26986075409LL
+
+static int32_t clamp_unit(int32_t v)
+{
+    if (v > XGO_Q30_ONE) {
+        return XGO_Q30_ONE;
+    }
+    if (v < -XGO_Q30_ONE) {
+        return -XGO_Q30_ONE;
+    }
+    return v;
+}
+
+/* v / 2^n rounded to nearest (ties up). */
+static int64_t rshift_round(int64_t v, unsigned n)
+{
+    return (v + ((int64_t)1 << (n - 1u))) >> n;
+}
+
+void xgo_sincos(xgo_bam_t a, xgo_q30_t *sin_out, xgo_q30_t *cos_out)
+{
+    uint32_t quadrant = a >> 30;
+    uint32_t r = a & 0x3FFFFFFFu;           /* position in the quadrant */
+    uint32_t k = (r + (1u << 22)) >> 23;    /* nearest table node, 0..128 */
+    int32_t d = (int32_t)r - (int32_t)(k << 23); /* |d| <= 2^22 BAM */
+    /* The offset from the node in Q34 radians: |dr| <= pi/512 * 2^34 ~ 1.1e8.
+     * Q34 keeps the correction terms 16x finer than the Q30 result. */
+    int64_t dr = rshift_round((int64_t)d * PI_2_Q34, 30);
+    int64_t half_d2 = rshift_round(dr * dr, 35);            /* dr^2/2, <= 3.2e5 */
+    int64_t d3_2 = rshift_round(dr * half_d2, 34);          /* dr^3/2, <= 1.1e3 */
+    /* sin(dr) = dr - dr^3/6 (next term < 1e-13),
+     * cos(dr) = 1 - dr^2/2 (next term dr^4/24 < 6e-11 = 0.07 LSB) */
+    int64_t sd = dr - (d3_2 >= 0 ? (d3_2 + 1) / 3 : -((-d3_2 + 1) / 3));
+    int64_t s0 = sin_tab[k];
+    int64_t c0 = sin_tab[128u - k];
+    /* angle addition: sin(a+d) = s0 cos d + c0 sin d
+     *                 cos(a+d) = c0 cos d - s0 sin d
+     * with cos d = 1 - half_d2; all products < 2^58 */
+    int32_t s = clamp_unit((int32_t)(s0 + rshift_round(c0 * sd - s0 * half_d2, 34)));
+    int32_t c = clamp_unit((int32_t)(c0 - rshift_round(s0 * sd + c0 * half_d2, 34)));
+    int32_t so, co;
+    switch (quadrant) {
+    case 0u:
+        so = s;
+        co = c;
+        break;
+    case 1u: /* sin(90 + x) = cos x, cos(90 + x) = -sin x */
+        so = c;
+        co = -s;
+        break;
+    case 2u:
+        so = -s;
+        co = -c;
+        break;
+    default:
+        so = -c;
+        co = s;
+        break;
+    }
+    if (sin_out != 0) {
+        *sin_out = so;
+    }
+    if (cos_out != 0) {
+        *cos_out = co;
+    }
+}
+
+xgo_q30_t xgo_sin(xgo_bam_t a)
+{
+    xgo_q30_t s;
+    xgo_sincos(a, &s, 0);
+    return s;
+}
+
+xgo_q30_t xgo_cos(xgo_bam_t a)
+{
+    xgo_q30_t c;
+    xgo_sincos(a, 0, &c);
+    return c;
+}
+
+/* ------------------------------------------------------------ atan2 */
+
+#define CORDIC_ITERS 8
+#define CORDIC_Z_SHIFT 8 /* the angle accumulates in 2^-8 BAM */
+
+/* atan(2^-i) in 2^-8 BAM units (2^40 per turn), i = 1..CORDIC_ITERS: the
+ * extra bits keep the table's rounding out of the result. */
+static const int64_t cordic_atan_tab[CORDIC_ITERS + 1] = {
+    0, /* i = 0 unused: the octant reduction leaves at most 45 degrees */
+    81134951838LL, 42869480287LL, 21761217566LL, 10922836750LL,
+    5466743129LL, 2734038620LL, 1367102738LL, 683561799LL,
+};
+
+/* 2^40 / (2 pi): radians -> 2^-8 BAM, for the final residual. */
+#define RAD_TO_Z 174992710548LL
+
+static unsigned clz32(uint32_t v)
+{
+    unsigned n = 0;
+    if (v == 0u) {
+        return 32u;
+    }
+    if (v <= 0x0000FFFFu) {
+        n += 16u;
+        v <<= 16;
+    }
+    if (v <= 0x00FFFFFFu) {
+        n += 8u;
+        v <<= 8;
+    }
+    if (v <= 0x0FFFFFFFu) {
+        n += 4u;
+        v <<= 4;
+    }
+    if (v <= 0x3FFFFFFFu) {
+        n += 2u;
+        v <<= 2;
+    }
+    if (v <= 0x7FFFFFFFu) {
+        n += 1u;
+    }
+    return n;
+}
+
+/* Angle of (ux, uy) with ux >= uy >= 0, ux > 0, top bit of ux at bit 29 or
+ * below 2^30 after normalisation; result in BAM, 0..2^29 (0..45 degrees). */
+static uint32_t cordic_octant(uint32_t ux, uint32_t uy)
+{
+    int32_t x = (int32_t)ux;
+    int32_t y = (int32_t)uy;
+    int64_t z = 0;
+    int i;
+    int64_t t, t3;
+    for (i = 1; i <= CORDIC_ITERS; ++i) {
+        int32_t half = (int32_t)1 << (i - 1);
+        int32_t dx = (y + half) >> i; /* rounded shifts: no drift */
+        int32_t dy = (x + half) >> i;
+        if (y >= 0) {
+            x += dx;
+            y -= dy;
+            z += cordic_atan_tab[i];
+        } else {
+            x -= dx;
+            y += dy;
+            z -= cordic_atan_tab[i];
+        }
+    }
+    /* What is left is the angle of (x, y), below atan(2^-CORDIC_ITERS):
+     * finish with atan(t) = t - t^3/3 (the next term, t^5/5, is below
+     * 2e-13 rad), t = y/x in Q32. |y| < 2^24 here, so y * 2^32 fits. */
+    t = (int64_t)y * ((int64_t)1 << 32);
+    t = t >= 0 ? (t + x / 2) / x : -((-t + x / 2) / x);      /* Q32, |t| < 2^25 */
+    t3 = (((t * t) >> 32) * t) >> 32;                          /* Q32 */
+    t -= t3 >= 0 ? (t3 + 1) / 3 : -((-t3 + 1) / 3);
+    z += (t * RAD_TO_Z + ((int64_t)1 << 31)) >> 32;           /* |t * RAD_TO_Z| < 2^63 */
+    return (uint32_t)((z + ((int64_t)1 << (CORDIC_Z_SHIFT - 1))) >> CORDIC_Z_SHIFT);
+}
+
+static xgo_bam_t atan2_mag(uint32_t ux, uint32_t uy, int xneg, int yneg)
+{
+    int swap = uy > ux;
+    uint32_t a;
+    unsigned n;
+    if (swap) {
+        uint32_t t = ux;
+        ux = uy;
+        uy = t;
+    }
+    if (ux == 0u) {
+        return 0u; /* atan2(0, 0) */
+    }
+    if (uy == 0u) {
+        a = 0u; /* on an axis: exact */
+    } else if (uy == ux) {
+        a = XGO_BAM_90 / 2u; /* on a diagonal: exact */
+    } else {
+        /* Normalise so the larger component is in [2^29, 2^30): full
+         * precision, and headroom for the CORDIC gain (1.16 * sqrt 2 < 2). */
+        n = clz32(ux);
+        if (n > 2u) {
+            ux <<= n - 2u;
+            uy <<= n - 2u;
+        } else if (n < 2u) {
+            /* rounded (in 64 bits: ux + half may pass 2^32) */
+            unsigned k = 2u - n;
+            ux = (uint32_t)(((uint64_t)ux + (1u << (k - 1u))) >> k);
+            uy = (uint32_t)(((uint64_t)uy + (1u << (k - 1u))) >> k);
+        }
+        a = cordic_octant(ux, uy);
+    }
+    if (swap) {
+        a = XGO_BAM_90 - a;
+    }
+    if (xneg) {
+        a = XGO_BAM_180 - a;
+    }
+    if (yneg) {
+        a = 0u - a;
+    }
+    return a;
+}
+
+static uint32_t abs_u32(int32_t v)
+{
+    return v < 0 ? 0u - (uint32_t)v : (uint32_t)v;
+}
+
+xgo_bam_t xgo_atan2(int32_t y, int32_t x)
+{
+    return atan2_mag(abs_u32(x), abs_u32(y), x < 0, y < 0);
+}
+
+static uint64_t abs_u64(int64_t v)
+{
+    return v < 0 ? 0u - (uint64_t)v : (uint64_t)v;
+}
+
+/* round(v / 2^k) for k >= 1 without overflow: for k >= 2 the dropped low
+ * bit cannot change the result, so add the half to v / 2 instead. */
+static uint64_t rshift_round_u64(uint64_t v, unsigned k)
+{
+    if (k == 1u) {
+        return (v >> 1) + (v & 1u);
+    }
+    return ((v >> 1) + ((uint64_t)1 << (k - 2u))) >> (k - 1u);
+}
+
+xgo_bam_t xgo_atan2_64(int64_t y, int64_t x)
+{
+    uint64_t ux = abs_u64(x);
+    uint64_t uy = abs_u64(y);
+    uint64_t m = ux > uy ? ux : uy;
+    unsigned k = 0;
+    /* Scale both down, once and rounded, until the larger is below 2^30:
+     * the ratio keeps 30 bits and atan2_mag needs no further shift. */
+    while ((m >> k) >= ((uint64_t)1 << 30)) {
+        ++k;
+    }
+    if (k > 0u) {
+        ux = rshift_round_u64(ux, k);
+        uy = rshift_round_u64(uy, k);
+    }
+    return atan2_mag((uint32_t)ux, (uint32_t)uy, x < 0, y < 0);
+}
+
+/* ------------------------------------------------------------ asin / acos */
+
+/* sqrt(1 - x^2) in Q30 for x in [-1, 1] (Q30), from (1 - x)(1 + x) so there
+ * is no cancellation near |x| = 1. */
+static int32_t unit_complement(int32_t x)
+{
+    /* both factors are in [0, 2^31]: compute them in 64 bits */
+    uint64_t p = (uint64_t)((int64_t)XGO_Q30_ONE - x) * (uint64_t)((int64_t)XGO_Q30_ONE + x); /* Q60 */
+    uint32_t r = xgo_isqrt64(p);
+    if (p - (uint64_t)r * r > r) {
+        ++r; /* round to nearest */
+    }
+    return (int32_t)r; /* <= 2^30 */
+}
+
+xgo_bam_t xgo_asin(xgo_q30_t x)
+{
+    x = clamp_unit(x);
+    return xgo_atan2(x, unit_complement(x));
+}
+
+xgo_bam_t xgo_acos(xgo_q30_t x)
+{
+    x = clamp_unit(x);
+    return xgo_atan2(unit_complement(x), x);
+}

@@ -1,0 +1,548 @@
+/*
+ * Fixed-point library: every function against an independent reference
+ * (libm in double precision, or exact 64-bit integer arithmetic written
+ * differently from the core), over dense sweeps of its whole domain plus
+ * every extreme. The maximum errors measured here are the ones stated in
+ * xgo/fixed.h and docs/fixed-point.md; the test prints them.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "unity.h"
+#include "xgo/fixed.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+void setUp(void) {}
+void tearDown(void) {}
+
+/* Deterministic xorshift generator: same numbers on every run. */
+static uint64_t rng_state = 0x9E3779B97F4A7C15ull;
+static uint32_t rnd32(void)
+{
+    rng_state ^= rng_state << 13;
+    rng_state ^= rng_state >> 7;
+    rng_state ^= rng_state << 17;
+    return (uint32_t)(rng_state >> 16);
+}
+static uint64_t rnd64(void)
+{
+    return ((uint64_t)rnd32() << 32) | rnd32();
+}
+
+static void report(const char *what, double value, const char *unit)
+{
+    char msg[160];
+    snprintf(msg, sizeof msg, "measured max error %s: %.4g %s", what, value, unit);
+    TEST_MESSAGE(msg);
+}
+
+static const int32_t extremes32[] = {
+    INT32_MIN, INT32_MIN + 1, -2147483647 / 2, -65536, -65535, -32768, -1000, -3, -2, -1,
+    0, 1, 2, 3, 1000, 32767, 65535, 65536, 2147483647 / 2, INT32_MAX - 1, INT32_MAX,
+};
+#define N_EXTREMES (sizeof extremes32 / sizeof extremes32[0])
+
+/* ------------------------------------------------------------ saturation */
+
+static int64_t clamp64(int64_t v)
+{
+    return v > INT32_MAX ? INT32_MAX : (v < INT32_MIN ? INT32_MIN : v);
+}
+
+static void test_saturating_add_sub_neg_abs(void)
+{
+    size_t i, j;
+    TEST_ASSERT_EQUAL_INT32(INT32_MAX, xgo_sat_add(INT32_MAX, 1));
+    TEST_ASSERT_EQUAL_INT32(INT32_MIN, xgo_sat_add(INT32_MIN, -1));
+    TEST_ASSERT_EQUAL_INT32(INT32_MAX, xgo_sat_sub(INT32_MAX, INT32_MIN));
+    TEST_ASSERT_EQUAL_INT32(INT32_MIN, xgo_sat_sub(INT32_MIN, INT32_MAX));
+    TEST_ASSERT_EQUAL_INT32(-1, xgo_sat_add(INT32_MAX, INT32_MIN));
+    TEST_ASSERT_EQUAL_INT32(INT32_MAX, xgo_sat_neg(INT32_MIN));
+    TEST_ASSERT_EQUAL_INT32(INT32_MAX, xgo_sat_abs(INT32_MIN));
+    TEST_ASSERT_EQUAL_INT32(INT32_MIN + 1, xgo_sat_neg(INT32_MAX));
+    TEST_ASSERT_EQUAL_INT32(0, xgo_sat_abs(0));
+    TEST_ASSERT_EQUAL_INT32(INT32_MAX, xgo_sat32(INT64_MAX));
+    TEST_ASSERT_EQUAL_INT32(INT32_MIN, xgo_sat32(INT64_MIN));
+    for (i = 0; i < N_EXTREMES; ++i) {
+        for (j = 0; j < N_EXTREMES; ++j) {
+            int32_t a = extremes32[i], b = extremes32[j];
+            TEST_ASSERT_EQUAL_INT32(clamp64((int64_t)a + b), xgo_sat_add(a, b));
+            TEST_ASSERT_EQUAL_INT32(clamp64((int64_t)a - b), xgo_sat_sub(a, b));
+        }
+        TEST_ASSERT_EQUAL_INT32(clamp64(-(int64_t)extremes32[i]), xgo_sat_neg(extremes32[i]));
+        TEST_ASSERT_EQUAL_INT32(clamp64(extremes32[i] < 0 ? -(int64_t)extremes32[i] : extremes32[i]),
+                                xgo_sat_abs(extremes32[i]));
+    }
+    for (i = 0; i < 100000; ++i) {
+        int32_t a = (int32_t)rnd32(), b = (int32_t)rnd32();
+        TEST_ASSERT_EQUAL_INT32(clamp64((int64_t)a + b), xgo_sat_add(a, b));
+        TEST_ASSERT_EQUAL_INT32(clamp64((int64_t)a - b), xgo_sat_sub(a, b));
+    }
+}
+
+/* floor(n / d) for d > 0, independent of the core's rounding code. */
+static int64_t floor_div(int64_t n, int64_t d)
+{
+    int64_t q = n / d;
+    if (n % d != 0 && n < 0) {
+        --q;
+    }
+    return q;
+}
+
+/* Reference for xgo_mul_q: round to nearest, ties up, then clamp. */
+static int64_t ref_mul_q(int32_t a, int32_t b, unsigned q)
+{
+    int64_t p = (int64_t)a * b;
+    int64_t d = (int64_t)1 << q;
+    int64_t f = floor_div(p, d);
+    int64_t rem = p - f * d; /* 0 <= rem < d */
+    if (q > 0 && rem >= d / 2) {
+        ++f;
+    }
+    return clamp64(f);
+}
+
+static void check_mul(int32_t a, int32_t b, unsigned q)
+{
+    TEST_ASSERT_EQUAL_INT32(ref_mul_q(a, b, q), xgo_mul_q(a, b, q));
+}
+
+static void test_mul_q_exact_rounding_and_saturation(void)
+{
+    size_t i, j;
+    unsigned q;
+    for (q = 0; q <= 31; ++q) {
+        for (i = 0; i < N_EXTREMES; ++i) {
+            for (j = 0; j < N_EXTREMES; ++j) {
+                check_mul(extremes32[i], extremes32[j], q);
+            }
+        }
+        for (i = 0; i < 20000; ++i) {
+            check_mul((int32_t)rnd32(), (int32_t)rnd32(), q);
+            check_mul((int32_t)rnd32() >> 12, (int32_t)rnd32() >> 12, q);
+        }
+    }
+    /* q beyond 31 behaves as 31 */
+    TEST_ASSERT_EQUAL_INT32(xgo_mul_q(INT32_MAX, INT32_MAX, 31), xgo_mul_q(INT32_MAX, INT32_MAX, 99));
+    /* Q16 examples */
+    TEST_ASSERT_EQUAL_INT32(3 * XGO_Q16_ONE, xgo_q16_mul(XGO_Q16_ONE + XGO_Q16_ONE / 2, 2 * XGO_Q16_ONE));
+    TEST_ASSERT_EQUAL_INT32(INT32_MAX, xgo_q16_mul(INT32_MAX, INT32_MAX));
+    TEST_ASSERT_EQUAL_INT32(INT32_MIN, xgo_q16_mul(INT32_MIN, INT32_MAX));
+    TEST_ASSERT_EQUAL_INT32(INT32_MAX, xgo_q16_mul(INT32_MIN, INT32_MIN));
+    report("xgo_mul_q", 0.5, "LSB (exact rounding, all q)");
+}
+
+/* Reference for division: exact integer quotient, ties away from zero. */
+static int64_t ref_div(int64_t n, int64_t d)
+{
+    int64_t q, r;
+    if (d == 0) {
+        return n > 0 ? INT32_MAX : (n < 0 ? INT32_MIN : 0);
+    }
+    q = n / d;
+    r = n % d;
+    if (r != 0) {
+        int64_t ar = r < 0 ? -r : r, ad = d < 0 ? -d : d;
+        if (2 * ar >= ad) {
+            q += ((n < 0) != (d < 0)) ? -1 : 1;
+        }
+    }
+    return clamp64(q);
+}
+
+static void test_div_q_and_muldiv(void)
+{
+    size_t i, j, k;
+    unsigned q;
+    for (q = 0; q <= 31; ++q) {
+        for (i = 0; i < N_EXTREMES; ++i) {
+            for (j = 0; j < N_EXTREMES; ++j) {
+                int32_t a = extremes32[i], b = extremes32[j];
+                TEST_ASSERT_EQUAL_INT32(ref_div((int64_t)a * ((int64_t)1 << q), b), xgo_div_q(a, b, q));
+            }
+        }
+        for (i = 0; i < 20000; ++i) {
+            int32_t a = (int32_t)rnd32(), b = (int32_t)rnd32() >> (rnd32() % 31);
+            TEST_ASSERT_EQUAL_INT32(ref_div((int64_t)a * ((int64_t)1 << q), b), xgo_div_q(a, b, q));
+        }
+    }
+    /* division by zero */
+    TEST_ASSERT_EQUAL_INT32(INT32_MAX, xgo_div_q(1, 0, 16));
+    TEST_ASSERT_EQUAL_INT32(INT32_MIN, xgo_div_q(-1, 0, 16));
+    TEST_ASSERT_EQUAL_INT32(0, xgo_div_q(0, 0, 16));
+    TEST_ASSERT_EQUAL_INT32(INT32_MAX, xgo_div_q(INT32_MIN, -1, 0));
+    TEST_ASSERT_EQUAL_INT32(INT32_MIN, xgo_div_q(INT32_MIN, 1, 31));
+    TEST_ASSERT_EQUAL_INT32(XGO_Q16_ONE / 3 + 0, xgo_q16_div(XGO_Q16_ONE, 3 * XGO_Q16_ONE));
+    TEST_ASSERT_EQUAL_INT32(INT32_MAX, xgo_muldiv(5, 7, 0));
+    TEST_ASSERT_EQUAL_INT32(INT32_MIN, xgo_muldiv(-5, 7, 0));
+    TEST_ASSERT_EQUAL_INT32(0, xgo_muldiv(0, 7, 0));
+    for (i = 0; i < N_EXTREMES; ++i) {
+        for (j = 0; j < N_EXTREMES; ++j) {
+            for (k = 0; k < N_EXTREMES; ++k) {
+                int32_t a = extremes32[i], b = extremes32[j], c = extremes32[k];
+                TEST_ASSERT_EQUAL_INT32(ref_div((int64_t)a * b, c), xgo_muldiv(a, b, c));
+            }
+        }
+    }
+    for (i = 0; i < 200000; ++i) {
+        int32_t a = (int32_t)rnd32(), b = (int32_t)rnd32() >> (rnd32() % 31),
+                c = (int32_t)rnd32() >> (rnd32() % 31);
+        TEST_ASSERT_EQUAL_INT32(ref_div((int64_t)a * b, c), xgo_muldiv(a, b, c));
+    }
+    report("xgo_div_q / xgo_muldiv", 0.5, "LSB (exact rounding)");
+}
+
+/* ------------------------------------------------------------ square root */
+
+static void check_isqrt32(uint32_t x)
+{
+    uint64_t r = xgo_isqrt32(x);
+    TEST_ASSERT_TRUE(r * r <= x);
+    TEST_ASSERT_TRUE((r + 1) * (r + 1) > x);
+}
+
+static void check_isqrt64(uint64_t x)
+{
+    /* exact check without overflow: r^2 <= x < (r+1)^2, using long double
+     * only to pick the comparison, never to compute the expected value */
+    uint64_t r = xgo_isqrt64(x);
+    uint64_t r2 = r * r; /* r < 2^32: fits */
+    TEST_ASSERT_TRUE(r <= 0xFFFFFFFFull);
+    TEST_ASSERT_TRUE(r2 <= x);
+    if (r < 0xFFFFFFFFull) {
+        /* (r+1)^2 = r2 + 2r + 1 may exceed 2^64 - 1 only when r+1 == 2^32 */
+        TEST_ASSERT_TRUE(x - r2 < 2 * r + 1);
+    }
+}
+
+static void test_isqrt_exact(void)
+{
+    uint32_t i;
+    uint64_t s;
+    check_isqrt32(0);
+    check_isqrt32(1);
+    check_isqrt32(0xFFFFFFFFu);
+    TEST_ASSERT_EQUAL_UINT32(65535u, xgo_isqrt32(0xFFFFFFFFu));
+    TEST_ASSERT_EQUAL_UINT32(0u, xgo_isqrt64(0));
+    TEST_ASSERT_EQUAL_UINT32(0xFFFFFFFFu, xgo_isqrt64(UINT64_MAX));
+    for (i = 0; i < 300000; ++i) {
+        check_isqrt32(i);
+        check_isqrt32(rnd32());
+    }
+    /* around every perfect square up to 2^32 (sampled) and near 2^32 */
+    for (i = 1; i < 65536; i += 7) {
+        check_isqrt32(i * i);
+        check_isqrt32(i * i - 1);
+        check_isqrt32(i * i + 1);
+    }
+    for (s = 1; s <= 0xFFFFFFFFull; s = s * 3 + 1) {
+        check_isqrt64(s * s);
+        check_isqrt64(s * s - 1);
+        check_isqrt64(s * s + 1);
+    }
+    check_isqrt64(0xFFFFFFFFull * 0xFFFFFFFFull);
+    check_isqrt64(0xFFFFFFFFull * 0xFFFFFFFFull - 1);
+    check_isqrt64(UINT64_MAX - 1);
+    for (i = 0; i < 300000; ++i) {
+        check_isqrt64(rnd64());
+        check_isqrt64(rnd64() >> (rnd32() % 64));
+    }
+    report("xgo_isqrt32 / xgo_isqrt64", 0.0, "(floor, exact)");
+}
+
+static void test_q16_sqrt_against_libm(void)
+{
+    double max_err = 0;
+    uint32_t i;
+    TEST_ASSERT_EQUAL_INT32(0, xgo_q16_sqrt(0));
+    TEST_ASSERT_EQUAL_INT32(0, xgo_q16_sqrt(-1));
+    TEST_ASSERT_EQUAL_INT32(0, xgo_q16_sqrt(INT32_MIN));
+    TEST_ASSERT_EQUAL_INT32(XGO_Q16_ONE, xgo_q16_sqrt(XGO_Q16_ONE));
+    TEST_ASSERT_EQUAL_INT32(2 * XGO_Q16_ONE, xgo_q16_sqrt(4 * XGO_Q16_ONE));
+    for (i = 0; i < 600000; ++i) {
+        int32_t x;
+        double ref, err;
+        if (i < 200000) {
+            x = (int32_t)i;
+        } else if (i < 400000) {
+            x = INT32_MAX - (int32_t)(i - 200000);
+        } else {
+            x = (int32_t)(rnd32() >> 1);
+        }
+        ref = sqrt((double)x / 65536.0) * 65536.0;
+        err = fabs((double)xgo_q16_sqrt(x) - ref);
+        if (err > max_err) {
+            max_err = err;
+        }
+    }
+    report("xgo_q16_sqrt", max_err, "LSB of Q16");
+    TEST_ASSERT_TRUE(max_err <= 0.5 + 1e-6);
+}
+
+/* ------------------------------------------------------------ angles */
+
+static double bam_wrap_diff(double a, double b)
+{
+    double d = fmod(a - b, 4294967296.0);
+    if (d > 2147483648.0) {
+        d -= 4294967296.0;
+    } else if (d < -2147483648.0) {
+        d += 4294967296.0;
+    }
+    return d;
+}
+
+static void test_angle_conversions(void)
+{
+    double max_err_bam = 0, max_err_mdeg = 0;
+    int32_t m;
+    uint32_t i;
+    TEST_ASSERT_EQUAL_UINT32(0u, xgo_mdeg_to_bam(0));
+    TEST_ASSERT_EQUAL_UINT32(XGO_BAM_90, xgo_mdeg_to_bam(90000));
+    TEST_ASSERT_EQUAL_UINT32(XGO_BAM_180, xgo_mdeg_to_bam(180000));
+    TEST_ASSERT_EQUAL_UINT32(XGO_BAM_180, xgo_mdeg_to_bam(-180000));
+    TEST_ASSERT_EQUAL_UINT32(0u - XGO_BAM_90, xgo_mdeg_to_bam(-90000));
+    TEST_ASSERT_EQUAL_UINT32(0u, xgo_mdeg_to_bam(360000));
+    TEST_ASSERT_EQUAL_INT32(90000, xgo_bam_to_mdeg(XGO_BAM_90));
+    TEST_ASSERT_EQUAL_INT32(-90000, xgo_bam_to_mdeg(0u - XGO_BAM_90));
+    TEST_ASSERT_EQUAL_INT32(-180000, xgo_bam_to_mdeg(XGO_BAM_180));
+    TEST_ASSERT_EQUAL_INT32(INT32_MIN, xgo_bam_signed(0x80000000u));
+    TEST_ASSERT_EQUAL_INT32(-1, xgo_bam_signed(0xFFFFFFFFu));
+    TEST_ASSERT_EQUAL_INT32(INT32_MAX, xgo_bam_signed(0x7FFFFFFFu));
+    (void)xgo_mdeg_to_bam(INT32_MIN);
+    (void)xgo_mdeg_to_bam(INT32_MAX);
+    for (m = -1000000; m <= 1000000; m += 1) {
+        double ref = (double)m * 4294967296.0 / 360000.0;
+        double err = fabs(bam_wrap_diff((double)xgo_mdeg_to_bam(m), ref));
+        if (err > max_err_bam && (m >= -360000 && m <= 360000)) {
+            max_err_bam = err;
+        }
+        TEST_ASSERT_TRUE(err <= 0.75);
+    }
+    for (i = 0; i < 2000000; ++i) {
+        uint32_t a = i < 1000000 ? i * 4295u : rnd32();
+        double ref = (double)xgo_bam_signed(a) * 360000.0 / 4294967296.0;
+        int32_t got = xgo_bam_to_mdeg(a);
+        double err = fabs((double)got - ref);
+        if (err > max_err_mdeg) {
+            max_err_mdeg = err;
+        }
+        TEST_ASSERT_TRUE(got >= -180000 && got <= 180000);
+    }
+    report("xgo_mdeg_to_bam (|mdeg| <= 360000)", max_err_bam, "LSB of BAM");
+    report("xgo_bam_to_mdeg", max_err_mdeg, "mdeg");
+    TEST_ASSERT_TRUE(max_err_bam <= 0.5 + 1e-6);
+    TEST_ASSERT_TRUE(max_err_mdeg <= 0.5 + 1e-6);
+}
+
+/* ------------------------------------------------------------ sin / cos */
+
+static double max_sin_err, max_cos_err;
+
+static void check_sincos(uint32_t a)
+{
+    xgo_q30_t s, c;
+    double rad = (double)a * (2.0 * M_PI / 4294967296.0);
+    double es, ec;
+    xgo_sincos(a, &s, &c);
+    es = fabs((double)s - sin(rad) * 1073741824.0);
+    ec = fabs((double)c - cos(rad) * 1073741824.0);
+    if (es > max_sin_err) {
+        max_sin_err = es;
+    }
+    if (ec > max_cos_err) {
+        max_cos_err = ec;
+    }
+    TEST_ASSERT_TRUE(s >= -XGO_Q30_ONE && s <= XGO_Q30_ONE);
+    TEST_ASSERT_TRUE(c >= -XGO_Q30_ONE && c <= XGO_Q30_ONE);
+}
+
+static void test_sincos_against_libm(void)
+{
+    uint32_t i, k;
+    max_sin_err = max_cos_err = 0;
+    /* 2^21 evenly spaced angles over the whole turn */
+    for (i = 0; i < (1u << 21); ++i) {
+        check_sincos(i << 11);
+    }
+    /* around every table node and quadrant boundary, where the correction
+     * term switches side */
+    for (k = 0; k < 512; ++k) {
+        uint32_t node = k << 23;
+        int32_t off;
+        for (off = -3; off <= 3; ++off) {
+            check_sincos(node + (uint32_t)off);
+            check_sincos(node + (1u << 22) + (uint32_t)off);
+        }
+    }
+    for (i = 0; i < 500000; ++i) {
+        check_sincos(rnd32());
+    }
+    check_sincos(0xFFFFFFFFu);
+    TEST_ASSERT_EQUAL_INT32(0, xgo_sin(0));
+    TEST_ASSERT_EQUAL_INT32(XGO_Q30_ONE, xgo_cos(0));
+    TEST_ASSERT_EQUAL_INT32(XGO_Q30_ONE, xgo_sin(XGO_BAM_90));
+    TEST_ASSERT_EQUAL_INT32(-XGO_Q30_ONE, xgo_cos(XGO_BAM_180));
+    TEST_ASSERT_EQUAL_INT32(0, xgo_sin(XGO_BAM_180));
+    report("xgo_sin", max_sin_err, "LSB of Q30");
+    report("xgo_cos", max_cos_err, "LSB of Q30");
+    TEST_ASSERT_TRUE(max_sin_err <= 2.0);
+    TEST_ASSERT_TRUE(max_cos_err <= 2.0);
+}
+
+/* ------------------------------------------------------------ atan2 */
+
+static double max_atan_err;
+
+static double atan2_err(double y, double x, uint32_t got)
+{
+    double ref = (x == 0 && y == 0) ? 0.0 : atan2(y, x) * (4294967296.0 / (2.0 * M_PI));
+    return fabs(bam_wrap_diff((double)got, ref));
+}
+
+static void check_atan2(int32_t y, int32_t x)
+{
+    double e = atan2_err((double)y, (double)x, xgo_atan2(y, x));
+    if (e > max_atan_err) {
+        max_atan_err = e;
+    }
+}
+
+static void test_atan2_against_libm(void)
+{
+    int32_t x, y;
+    size_t i, j;
+    uint32_t k;
+    static const double mags[] = {3, 17, 1000, 65536, 1e6, 3.3e7, 5e8, 1.07e9, 2.1e9};
+    max_atan_err = 0;
+    TEST_ASSERT_EQUAL_UINT32(0u, xgo_atan2(0, 0));
+    TEST_ASSERT_EQUAL_UINT32(0u, xgo_atan2(0, 5));
+    TEST_ASSERT_EQUAL_UINT32(XGO_BAM_90, xgo_atan2(5, 0));
+    TEST_ASSERT_EQUAL_UINT32(0u - XGO_BAM_90, xgo_atan2(-5, 0));
+    TEST_ASSERT_EQUAL_UINT32(XGO_BAM_180, xgo_atan2(0, -5));
+    TEST_ASSERT_EQUAL_UINT32(XGO_BAM_90 / 2, xgo_atan2(INT32_MAX, INT32_MAX));
+    TEST_ASSERT_EQUAL_UINT32(XGO_BAM_180 + XGO_BAM_90 / 2, xgo_atan2(INT32_MIN, INT32_MIN));
+    /* every small pair: coarse inputs, the hardest case for precision */
+    for (y = -128; y <= 128; ++y) {
+        for (x = -128; x <= 128; ++x) {
+            check_atan2(y, x);
+        }
+    }
+    /* every extreme against every extreme */
+    for (i = 0; i < N_EXTREMES; ++i) {
+        for (j = 0; j < N_EXTREMES; ++j) {
+            check_atan2(extremes32[i], extremes32[j]);
+        }
+    }
+    /* rays: 2^16 directions at magnitudes from 3 to 2^31 */
+    for (i = 0; i < sizeof mags / sizeof mags[0]; ++i) {
+        for (k = 0; k < 65536; ++k) {
+            double t = (double)k * (2.0 * M_PI / 65536.0) + 1e-4;
+            double fx = mags[i] * cos(t), fy = mags[i] * sin(t);
+            check_atan2((int32_t)fy, (int32_t)fx);
+        }
+    }
+    for (k = 0; k < 1000000; ++k) {
+        int32_t ry = (int32_t)rnd32() >> (rnd32() % 31);
+        int32_t rx = (int32_t)rnd32() >> (rnd32() % 31);
+        check_atan2(ry, rx);
+    }
+    report("xgo_atan2", max_atan_err, "LSB of BAM");
+    TEST_ASSERT_TRUE(max_atan_err <= 4.0);
+}
+
+static void test_atan2_64_against_libm(void)
+{
+    double max_err = 0;
+    uint32_t k;
+    static const int64_t ext[] = {INT64_MIN, INT64_MIN + 1, -((int64_t)1 << 40), -5, -1, 0,
+                                  1, 5, (int64_t)1 << 40, INT64_MAX - 1, INT64_MAX};
+    size_t i, j;
+    for (i = 0; i < sizeof ext / sizeof ext[0]; ++i) {
+        for (j = 0; j < sizeof ext / sizeof ext[0]; ++j) {
+            double e = atan2_err((double)ext[i], (double)ext[j], xgo_atan2_64(ext[i], ext[j]));
+            if (e > max_err) {
+                max_err = e;
+            }
+        }
+    }
+    for (k = 0; k < 300000; ++k) {
+        int64_t y = (int64_t)rnd64() >> (rnd32() % 63);
+        int64_t x = (int64_t)rnd64() >> (rnd32() % 63);
+        double e = atan2_err((double)y, (double)x, xgo_atan2_64(y, x));
+        if (e > max_err) {
+            max_err = e;
+        }
+    }
+    report("xgo_atan2_64", max_err, "LSB of BAM");
+    TEST_ASSERT_TRUE(max_err <= 4.0);
+}
+
+/* ------------------------------------------------------------ asin / acos */
+
+static void test_asin_acos_against_libm(void)
+{
+    double max_as = 0, max_ac = 0;
+    int64_t v;
+    uint32_t k;
+    for (k = 0; k < 1200000; ++k) {
+        int32_t x;
+        double xd, ea, ec;
+        if (k < 400000) {
+            x = (int32_t)(-XGO_Q30_ONE + (int64_t)k * 5369); /* whole range */
+        } else if (k < 600000) {
+            x = XGO_Q30_ONE - (int32_t)(k - 400000); /* last 2e5 LSB below +1 */
+        } else if (k < 800000) {
+            x = -XGO_Q30_ONE + (int32_t)(k - 600000);
+        } else {
+            x = (int32_t)(rnd32() % (2u * XGO_Q30_ONE + 1u)) - XGO_Q30_ONE;
+        }
+        xd = (double)x / 1073741824.0;
+        ea = fabs(bam_wrap_diff((double)xgo_asin(x), asin(xd) * (4294967296.0 / (2.0 * M_PI))));
+        ec = fabs(bam_wrap_diff((double)xgo_acos(x), acos(xd) * (4294967296.0 / (2.0 * M_PI))));
+        if (ea > max_as) {
+            max_as = ea;
+        }
+        if (ec > max_ac) {
+            max_ac = ec;
+        }
+    }
+    /* clamping outside [-1, 1] */
+    for (v = INT32_MIN; v <= INT32_MAX; v += 0x01000000) {
+        int32_t x = (int32_t)v;
+        int32_t s = xgo_bam_signed(xgo_asin(x));
+        int32_t c = xgo_bam_signed(xgo_acos(x));
+        TEST_ASSERT_TRUE(s >= -(int32_t)XGO_BAM_90 && s <= (int32_t)XGO_BAM_90);
+        TEST_ASSERT_TRUE(c >= 0 || xgo_acos(x) == XGO_BAM_180);
+    }
+    TEST_ASSERT_EQUAL_UINT32(XGO_BAM_90, xgo_asin(INT32_MAX));
+    TEST_ASSERT_EQUAL_UINT32(0u - XGO_BAM_90, xgo_asin(INT32_MIN));
+    TEST_ASSERT_EQUAL_UINT32(0u, xgo_acos(INT32_MAX));
+    TEST_ASSERT_EQUAL_UINT32(XGO_BAM_180, xgo_acos(INT32_MIN));
+    TEST_ASSERT_EQUAL_UINT32(XGO_BAM_90, xgo_acos(0));
+    report("xgo_asin", max_as, "LSB of BAM");
+    report("xgo_acos", max_ac, "LSB of BAM");
+    TEST_ASSERT_TRUE(max_as <= 4.0);
+    TEST_ASSERT_TRUE(max_ac <= 4.0);
+}
+
+int main(void)
+{
+    UNITY_BEGIN();
+    RUN_TEST(test_saturating_add_sub_neg_abs);
+    RUN_TEST(test_mul_q_exact_rounding_and_saturation);
+    RUN_TEST(test_div_q_and_muldiv);
+    RUN_TEST(test_isqrt_exact);
+    RUN_TEST(test_q16_sqrt_against_libm);
+    RUN_TEST(test_angle_conversions);
+    RUN_TEST(test_sincos_against_libm);
+    RUN_TEST(test_atan2_against_libm);
+    RUN_TEST(test_atan2_64_against_libm);
+    RUN_TEST(test_asin_acos_against_libm);
+    return UNITY_END();
+}
