@@ -1,0 +1,113 @@
+/* decode.c - register values in words (see decode.h). Meanings follow the
+ * protocol document plus docs/protocol.md errata. */
+#include "decode.h"
+
+#include <stdio.h>
+
+#include "xgo/regs.h"
+
+static const char *const xgo_host_action_names[] = {
+    "default stance", "lie down",    "stand up",       "creep",
+    "circle",         "step",        "squat",          "roll",
+    "pitch",          "yaw",         "three-axis rotation", "pee",
+    "sit",            "beckon",      "stretch",        "wave",
+    "sway",           "beg for food", "search for food", "shake hands",
+};
+
+#define XGO_HOST_ACTION_NAMES (sizeof xgo_host_action_names / sizeof xgo_host_action_names[0])
+
+/* Centred registers: 0x00 full reverse .. 0xFF full forward. 0x7F and 0x80
+ * both mean zero (the vendor library sends 0x7F for zero). */
+static int xgo_host_decode_centred(uint8_t value, char *out, size_t out_size)
+{
+    int pct;
+    if (value == 0x7Fu || value == 0x80u) {
+        return snprintf(out, out_size, "0%%");
+    }
+    pct = value > 0x80u ? ((int)value - 128) * 100 / 127 : ((int)value - 127) * 100 / 127;
+    return snprintf(out, out_size, "%+d%%", pct);
+}
+
+static int xgo_host_decode_choice(uint8_t value, const char *const *names, size_t count,
+                                  char *out, size_t out_size)
+{
+    if (value < count) {
+        return snprintf(out, out_size, "%s", names[value]);
+    }
+    return snprintf(out, out_size, "invalid");
+}
+
+static int xgo_host_decode_unload(uint8_t value, char *out, size_t out_size)
+{
+    if (value == 0x00u) {
+        return snprintf(out, out_size, "all servos loaded");
+    }
+    if (value == 0x01u) {
+        return snprintf(out, out_size, "unload all servos");
+    }
+    if (value >= 0x11u && value <= 0x14u) {
+        return snprintf(out, out_size, "unload leg %d", value - 0x10);
+    }
+    if (value >= 0x21u && value <= 0x24u) {
+        return snprintf(out, out_size, "load leg %d", value - 0x20);
+    }
+    return snprintf(out, out_size, "invalid");
+}
+
+static int xgo_host_decode_action(uint8_t value, char *out, size_t out_size)
+{
+    if (value < XGO_HOST_ACTION_NAMES) {
+        return snprintf(out, out_size, "%s", xgo_host_action_names[value]);
+    }
+    if (value == 255u) {
+        return snprintf(out, out_size, "reset");
+    }
+    return snprintf(out, out_size, "action %u", (unsigned)value);
+}
+
+int xgo_host_decode_value(uint8_t addr, uint8_t value, char *out, size_t out_size)
+{
+    static const char *const perform[] = {"normal control", "cyclic action"};
+    static const char *const calibration[] = {"exit calibration", "enter calibration"};
+    static const char *const gaits[] = {"trot", "walk", "high_walk", "slow_trot"};
+    static const char *const paces[] = {"normal", "slow", "high"};
+    static const char *const imu[] = {"off", "self-stabilizing"};
+    static const char *const once[] = {"idle", "do it"};
+
+    out[0] = '\0';
+    if ((addr >= XGO_REG_VX && addr <= XGO_REG_BODY_YAW) ||
+        (addr >= XGO_REG_LEG1_X && addr <= XGO_REG_LEG4_Z) ||
+        (addr >= XGO_REG_SERVO11 && addr <= XGO_REG_SERVO43)) {
+        return xgo_host_decode_centred(value, out, out_size) > 0;
+    }
+    switch (addr) {
+    case XGO_REG_PERFORM:
+        return xgo_host_decode_choice(value, perform, 2, out, out_size) > 0;
+    case XGO_REG_CALIBRATION:
+        return xgo_host_decode_choice(value, calibration, 2, out, out_size) > 0;
+    case XGO_REG_GAIT_TYPE:
+        return xgo_host_decode_choice(value, gaits, 4, out, out_size) > 0;
+    case XGO_REG_UNLOAD:
+        return xgo_host_decode_unload(value, out, out_size) > 0;
+    case XGO_REG_SET_ZERO:
+    case XGO_REG_STAND:
+        return xgo_host_decode_choice(value, once, 2, out, out_size) > 0;
+    case XGO_REG_PERIOD_ROLL:
+    case XGO_REG_PERIOD_PITCH:
+    case XGO_REG_PERIOD_YAW:
+    case XGO_REG_MARK_TIME:
+    case XGO_REG_PERIOD_X:
+    case XGO_REG_PERIOD_Y:
+    case XGO_REG_PERIOD_Z:
+        /* 0 stops; 1..255 scale linearly, and the scale is per model. */
+        return value == 0u ? snprintf(out, out_size, "off") > 0 : 0;
+    case XGO_REG_MOVE_MODE:
+        return xgo_host_decode_choice(value, paces, 3, out, out_size) > 0;
+    case XGO_REG_ACTION:
+        return xgo_host_decode_action(value, out, out_size) > 0;
+    case XGO_REG_IMU_MODE:
+        return xgo_host_decode_choice(value, imu, 2, out, out_size) > 0;
+    default:
+        return 0;
+    }
+}

@@ -1,0 +1,350 @@
+/*
+ * loop.c - the event loop (see loop.h).
+ *
+ * Each turn: run the control ticks that are due, feed pending input to the
+ * board, move its replies to the output queue, write what is due, then
+ * poll() until the next tick, the next paced byte, input or output room.
+ *
+ * "No host" (Linux: the master polls POLLHUP and reads fail with EIO while
+ * nobody has the slave open) is a normal state. In it the master is left out
+ * of poll() - POLLHUP cannot be masked, so polling it would spin - and
+ * probed once per tick instead; replies for the departed host are dropped.
+ *
+ * Backpressure instead of loss: input is fed to the board only in chunks
+ * whose replies are sure to fit both the board's transmit buffer and our
+ * output queue, and the master is read only when all earlier input has been
+ * fed. A host that writes requests but never reads replies therefore fills
+ * the pty's buffers and blocks itself; xgo-emu keeps ticking.
+ */
+#include "loop.h"
+
+#include <errno.h>
+#include <poll.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "clock.h"
+
+#define XGO_HOST_TICK_US (1000000u / XGO_TICK_HZ)
+
+/* After a stall longer than this many periods (the process was stopped, the
+ * machine suspended) the missed ticks are skipped, not replayed in a burst. */
+#define XGO_HOST_MAX_CATCHUP_TICKS 50u
+
+/* Pacing without a known host speed assumes the board's own 115200 8N1. */
+#define XGO_HOST_DEFAULT_BAUD 115200u
+
+/* 10 bits per byte on the wire: start, 8 data, stop. */
+#define XGO_HOST_BITS_PER_BYTE 10u
+
+static uint64_t xgo_host_max_u64(uint64_t a, uint64_t b)
+{
+    return a > b ? a : b;
+}
+
+void xgo_host_loop_init(xgo_host_loop_t *l, xgo_board_t *board, const xgo_host_pty_t *pty,
+                        xgo_host_trace_t *trace, int baud_pacing, volatile sig_atomic_t *stop)
+{
+    memset(l, 0, sizeof *l);
+    l->board = board;
+    l->pty = pty;
+    l->trace = trace;
+    l->baud_pacing = baud_pacing;
+    l->stop = stop;
+    xgo_host_outq_init(&l->out);
+    /* Nobody has the slave open yet; the first probe finds out. */
+    l->host_gone = 1;
+    l->next_tick_us = xgo_host_clock_us() + XGO_HOST_TICK_US;
+}
+
+static uint32_t xgo_host_loop_bytes_per_s(const xgo_host_loop_t *l)
+{
+    uint32_t baud = xgo_host_pty_host_baud(l->pty);
+    if (baud == 0) {
+        baud = XGO_HOST_DEFAULT_BAUD;
+    }
+    return baud / XGO_HOST_BITS_PER_BYTE;
+}
+
+static void xgo_host_loop_set_trace_time(xgo_host_loop_t *l, uint64_t now_us)
+{
+    if (l->trace != NULL) {
+        l->trace->now_us = now_us;
+    }
+}
+
+static void xgo_host_loop_run_ticks(xgo_host_loop_t *l, uint64_t now_us)
+{
+    uint64_t due;
+    uint64_t i;
+    if (now_us < l->next_tick_us) {
+        return;
+    }
+    due = (now_us - l->next_tick_us) / XGO_HOST_TICK_US + 1;
+    if (due > XGO_HOST_MAX_CATCHUP_TICKS) {
+        l->counters.ticks_skipped += due - XGO_HOST_MAX_CATCHUP_TICKS;
+        due = XGO_HOST_MAX_CATCHUP_TICKS;
+        l->next_tick_us = now_us; /* restart the schedule from now */
+    } else {
+        l->next_tick_us += (due - 1) * XGO_HOST_TICK_US;
+    }
+    for (i = 0; i < due; i++) {
+        xgo_board_tick(l->board);
+    }
+    l->next_tick_us += XGO_HOST_TICK_US;
+    l->counters.ticks += due;
+}
+
+/* Replies for a host that has gone are dropped, as on a real wire. */
+static void xgo_host_loop_discard_replies(xgo_host_loop_t *l)
+{
+    uint8_t scratch[256];
+    size_t n;
+    while ((n = xgo_board_transmit(l->board, scratch, sizeof scratch)) > 0) {
+        l->counters.bytes_discarded += n;
+    }
+}
+
+/* Moves the board's replies into the output queue. ready_us: the earliest a
+ * reply can start on the wire (its request's last byte has arrived). */
+static void xgo_host_loop_take_replies(xgo_host_loop_t *l, uint64_t now_us, uint64_t ready_us)
+{
+    uint8_t chunk[512];
+    if (l->host_gone || (l->in_orphaned && l->in_len > 0)) {
+        xgo_host_loop_discard_replies(l);
+        return;
+    }
+    while (xgo_board_tx_pending(l->board) > 0) {
+        size_t room = xgo_host_outq_room(&l->out);
+        size_t n;
+        if (room == 0) {
+            return; /* stays in the board until the host reads */
+        }
+        n = xgo_board_transmit(l->board, chunk, room < sizeof chunk ? room : sizeof chunk);
+        if (n == 0) {
+            return;
+        }
+        if (l->baud_pacing) {
+            uint32_t bytes_per_s = xgo_host_loop_bytes_per_s(l);
+            uint64_t start = xgo_host_max_u64(xgo_host_max_u64(now_us, ready_us),
+                                              l->tx_wire_free_us);
+            xgo_host_outq_push(&l->out, chunk, n, start, bytes_per_s);
+            l->tx_wire_free_us = start + (uint64_t)n * 1000000u / bytes_per_s;
+        } else {
+            xgo_host_outq_push(&l->out, chunk, n, now_us, 0);
+        }
+    }
+}
+
+/* Feeds buffered input to the board in chunks whose replies surely fit. A
+ * chunk of 9k - 8 bytes completes at most k frames (a request is at least 9
+ * bytes and the first may need only one more), each answered by at most one
+ * reply of at most XGO_FRAME_MAX_LEN bytes. */
+static void xgo_host_loop_feed(xgo_host_loop_t *l, uint64_t now_us)
+{
+    while (l->in_fed < l->in_len) {
+        size_t board_room = XGO_TX_BUFFER_SIZE - xgo_board_tx_pending(l->board);
+        size_t out_room = (l->host_gone || l->in_orphaned) ? XGO_TX_BUFFER_SIZE
+                                                            : xgo_host_outq_room(&l->out);
+        size_t room = board_room < out_room ? board_room : out_room;
+        size_t replies = room / XGO_FRAME_MAX_LEN;
+        size_t chunk;
+        uint64_t ready_us = now_us;
+
+        if (replies == 0) {
+            return; /* wait for the host to read */
+        }
+        chunk = replies * XGO_READ_REQUEST_LEN - (XGO_READ_REQUEST_LEN - 1);
+        if (chunk > l->in_len - l->in_fed) {
+            chunk = l->in_len - l->in_fed;
+        }
+        xgo_host_loop_set_trace_time(l, now_us);
+        xgo_board_receive(l->board, l->in + l->in_fed, chunk, l->in_rx_ms);
+        l->in_fed += chunk;
+        if (l->baud_pacing) {
+            ready_us = l->in_wire_start_us +
+                       (uint64_t)l->in_fed * 1000000u / l->in_bytes_per_s;
+        }
+        xgo_host_loop_take_replies(l, now_us, ready_us);
+    }
+    l->in_len = 0;
+    l->in_fed = 0;
+    l->in_orphaned = 0;
+}
+
+static void xgo_host_loop_host_left(xgo_host_loop_t *l)
+{
+    if (l->host_gone) {
+        return;
+    }
+    l->host_gone = 1;
+    l->counters.host_hangups++;
+    l->counters.bytes_discarded += xgo_host_outq_clear(&l->out);
+    xgo_host_loop_discard_replies(l);
+    xgo_host_pty_discard_unread(l->pty);
+    l->out_blocked = 0;
+    l->tx_wire_free_us = 0;
+    l->rx_wire_free_us = 0;
+}
+
+/* Is a host there? Called once per turn while we believe none is. */
+static void xgo_host_loop_probe_host(xgo_host_loop_t *l)
+{
+    struct pollfd pfd;
+    pfd.fd = l->pty->master_fd;
+    pfd.events = POLLIN;
+    pfd.revents = 0;
+    if (poll(&pfd, 1, 0) < 0) {
+        return; /* EINTR: probe again next turn */
+    }
+    if ((pfd.revents & POLLIN) != 0 || (pfd.revents & (POLLHUP | POLLERR)) == 0) {
+        l->host_gone = 0;
+        l->counters.host_attaches++;
+    }
+}
+
+static void xgo_host_loop_read(xgo_host_loop_t *l, uint64_t now_us)
+{
+    ssize_t n;
+    if (l->in_len != 0) {
+        return; /* earlier input not fed yet: leave the rest in the kernel */
+    }
+    do {
+        n = read(l->pty->master_fd, l->in, sizeof l->in);
+    } while (n < 0 && errno == EINTR);
+    if (n > 0) {
+        l->in_orphaned = l->host_gone;
+        l->in_len = (size_t)n;
+        l->in_fed = 0;
+        l->in_rx_ms = xgo_host_clock_ms32(now_us);
+        l->counters.bytes_in += (uint64_t)n;
+        if (l->baud_pacing) {
+            /* A real UART would still be receiving: the bytes arrive one
+             * wire time after another, starting now or when the previous
+             * burst finished, whichever is later. */
+            l->in_bytes_per_s = xgo_host_loop_bytes_per_s(l);
+            l->in_wire_start_us = xgo_host_max_u64(now_us, l->rx_wire_free_us);
+            l->rx_wire_free_us =
+                l->in_wire_start_us + (uint64_t)n * 1000000u / l->in_bytes_per_s;
+        }
+        return;
+    }
+    if (n < 0 && errno != EAGAIN && errno != EWOULDBLOCK) {
+        xgo_host_loop_host_left(l); /* EIO: the last host closed the slave */
+    }
+}
+
+static void xgo_host_loop_write(xgo_host_loop_t *l, uint64_t now_us)
+{
+    size_t due = xgo_host_outq_due(&l->out, now_us);
+    while (due > 0) {
+        ssize_t n = write(l->pty->master_fd, l->out.bytes, due);
+        if (n > 0) {
+            xgo_host_outq_consume(&l->out, (size_t)n);
+            l->counters.bytes_out += (uint64_t)n;
+            due -= (size_t)n;
+            l->out_blocked = 0;
+            continue;
+        }
+        if (n < 0 && errno == EINTR) {
+            continue;
+        }
+        if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) {
+            l->out_blocked = 1;
+            l->counters.write_stalls++;
+            return;
+        }
+        xgo_host_loop_host_left(l);
+        return;
+    }
+}
+
+/* How long poll() may sleep: until the next tick, or the next paced byte. */
+static int xgo_host_loop_timeout_ms(const xgo_host_loop_t *l, uint64_t now_us)
+{
+    uint64_t wake = l->next_tick_us;
+    if (!l->host_gone && !l->out_blocked && l->out.len > 0) {
+        uint64_t due = xgo_host_outq_next_due_us(&l->out);
+        if (due < wake) {
+            wake = due;
+        }
+    }
+    if (wake <= now_us) {
+        return 0;
+    }
+    /* Round up: waking early would just loop once more for nothing. */
+    return (int)((wake - now_us + 999u) / 1000u);
+}
+
+int xgo_host_loop_run(xgo_host_loop_t *l)
+{
+    while (!*l->stop) {
+        uint64_t now = xgo_host_clock_us();
+        struct pollfd pfd;
+        int ready;
+
+        xgo_host_loop_run_ticks(l, now);
+        if (l->host_gone) {
+            xgo_host_loop_probe_host(l);
+        }
+        xgo_host_loop_feed(l, now);
+        if (l->in_len == 0) {
+            /* Only with no input still waiting: bytes held back by us are
+             * not silence on the wire. */
+            xgo_host_loop_set_trace_time(l, now);
+            xgo_board_poll(l->board, xgo_host_clock_ms32(now));
+        }
+        xgo_host_loop_take_replies(l, now, now);
+        if (!l->host_gone) {
+            xgo_host_loop_write(l, now);
+        }
+
+        pfd.fd = l->host_gone ? -1 : l->pty->master_fd; /* negative fd: ignored */
+        pfd.events = (short)((l->in_len == 0 ? POLLIN : 0) | (l->out_blocked ? POLLOUT : 0));
+        pfd.revents = 0;
+        /* A signal landing between the stop check and poll() is noticed
+         * at the latest one tick later: the timeout never exceeds a tick. */
+        ready = poll(&pfd, 1, xgo_host_loop_timeout_ms(l, now));
+        if (ready < 0) {
+            if (errno == EINTR) {
+                continue;
+            }
+            fprintf(stderr, "xgo-emu: poll: %s\n", strerror(errno));
+            return -1;
+        }
+        if (ready == 0) {
+            continue;
+        }
+        now = xgo_host_clock_us();
+        /* Hang-up first: input still readable after it was written by a
+         * host that has gone, and its replies must not reach the next one. */
+        if (pfd.revents & (POLLHUP | POLLERR)) {
+            xgo_host_loop_host_left(l);
+        }
+        if (pfd.revents & POLLIN) {
+            xgo_host_loop_read(l, now);
+        }
+    }
+    return 0;
+}
+
+void xgo_host_loop_print_counters(const xgo_host_loop_t *l, FILE *out)
+{
+    uint32_t board[XGO_DIAG_COUNT];
+    const xgo_host_counters_t *c = &l->counters;
+    int i;
+
+    xgo_board_counters(l->board, board);
+    fputs("xgo-emu: counters at exit\n", out);
+    for (i = 0; i < (int)XGO_DIAG_COUNT; i++) {
+        fprintf(out, "  %-22s %lu\n", xgo_diag_name((xgo_diag_t)i), (unsigned long)board[i]);
+    }
+    fprintf(out, "  %-22s %llu\n", "host_bytes_in", (unsigned long long)c->bytes_in);
+    fprintf(out, "  %-22s %llu\n", "host_bytes_out", (unsigned long long)c->bytes_out);
+    fprintf(out, "  %-22s %llu\n", "host_bytes_discarded", (unsigned long long)c->bytes_discarded);
+    fprintf(out, "  %-22s %llu\n", "host_attaches", (unsigned long long)c->host_attaches);
+    fprintf(out, "  %-22s %llu\n", "host_hangups", (unsigned long long)c->host_hangups);
+    fprintf(out, "  %-22s %llu\n", "host_write_stalls", (unsigned long long)c->write_stalls);
+    fprintf(out, "  %-22s %llu\n", "ticks", (unsigned long long)c->ticks);
+    fprintf(out, "  %-22s %llu\n", "ticks_skipped", (unsigned long long)c->ticks_skipped);
+}

@@ -1,0 +1,115 @@
+/*
+ * main.c - xgo-emu: the XGO-Mini driver board on a pseudo-terminal.
+ *
+ * Start-up order matters to scripts: the pty is configured (raw) and the
+ * --link symlink is in place before the slave path is printed, so whoever
+ * reads the first stdout line can open the port at once.
+ */
+#include <signal.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "clock.h"
+#include "link.h"
+#include "loop.h"
+#include "options.h"
+#include "pty.h"
+#include "trace.h"
+#include "xgo/board.h"
+
+#define XGO_EXIT_OK 0
+#define XGO_EXIT_RUNTIME 1
+#define XGO_EXIT_USAGE 2
+
+static volatile sig_atomic_t xgo_host_stop_requested;
+
+/* Only sets the flag: the loop notices within one tick (poll() is not
+ * restarted: SA_RESTART is deliberately left out). */
+static void xgo_host_on_stop_signal(int sig)
+{
+    (void)sig;
+    xgo_host_stop_requested = 1;
+}
+
+static int xgo_host_install_signals(void)
+{
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = xgo_host_on_stop_signal;
+    sigemptyset(&sa.sa_mask);
+    /* SIGHUP too: a closed terminal should still get the link cleaned up. */
+    if (sigaction(SIGINT, &sa, NULL) != 0 || sigaction(SIGTERM, &sa, NULL) != 0 ||
+        sigaction(SIGHUP, &sa, NULL) != 0) {
+        return -1;
+    }
+    /* A script that read our first line and closed the pipe must not kill
+     * us with SIGPIPE later. */
+    sa.sa_handler = SIG_IGN;
+    return sigaction(SIGPIPE, &sa, NULL);
+}
+
+int main(int argc, char **argv)
+{
+    static xgo_board_t board;   /* static: large, and lives as long as the process */
+    static xgo_host_loop_t loop;
+    xgo_host_options_t opts;
+    xgo_host_pty_t pty;
+    xgo_host_trace_t trace;
+    char err[512];
+    int replaced = 0;
+    int rc;
+
+    switch (xgo_host_options_parse(&opts, argc, argv, err, sizeof err)) {
+    case XGO_HOST_PARSE_RUN:
+        break;
+    case XGO_HOST_PARSE_HELP:
+        xgo_host_options_usage(stdout);
+        return XGO_EXIT_OK;
+    case XGO_HOST_PARSE_VERSION:
+        printf("xgo-emu %s\n", XGO_EMU_VERSION);
+        return XGO_EXIT_OK;
+    case XGO_HOST_PARSE_ERROR:
+        fprintf(stderr, "xgo-emu: %s\n", err);
+        xgo_host_options_usage(stderr);
+        return XGO_EXIT_USAGE;
+    }
+
+    if (xgo_host_install_signals() != 0) {
+        perror("xgo-emu: sigaction");
+        return XGO_EXIT_RUNTIME;
+    }
+    if (xgo_host_pty_open(&pty, err, sizeof err) != 0) {
+        fprintf(stderr, "xgo-emu: %s\n", err);
+        return XGO_EXIT_RUNTIME;
+    }
+    if (opts.link_path != NULL) {
+        if (xgo_host_link_create(opts.link_path, pty.slave_path, &replaced, err, sizeof err) != 0) {
+            fprintf(stderr, "xgo-emu: %s\n", err);
+            xgo_host_pty_close(&pty);
+            return XGO_EXIT_RUNTIME;
+        }
+        if (replaced) {
+            fprintf(stderr, "xgo-emu: replaced the existing symlink %s\n", opts.link_path);
+        }
+    }
+
+    xgo_board_init(&board, &opts.board);
+    xgo_host_trace_init(&trace, stderr, xgo_host_clock_us());
+    if (opts.trace) {
+        xgo_board_set_trace(&board, xgo_host_trace_event, &trace);
+    }
+    xgo_host_loop_init(&loop, &board, &pty, opts.trace ? &trace : NULL, opts.baud_pacing,
+                       &xgo_host_stop_requested);
+
+    printf("%s\n", pty.slave_path);
+    fflush(stdout);
+
+    rc = xgo_host_loop_run(&loop);
+
+    xgo_host_loop_print_counters(&loop, stderr);
+    if (opts.link_path != NULL) {
+        xgo_host_link_remove_if_ours(opts.link_path, pty.slave_path);
+    }
+    xgo_host_pty_close(&pty);
+    return rc == 0 ? XGO_EXIT_OK : XGO_EXIT_RUNTIME;
+}

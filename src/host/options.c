@@ -1,0 +1,257 @@
+/*
+ * options.c - table-driven parsing of xgo-emu's command line.
+ *
+ * Each row names an option, its argument (if any), a help line and the
+ * function that applies it. Both "--opt VALUE" and "--opt=VALUE" work.
+ * A bad value is misuse just like an unknown option: the caller prints one
+ * line plus the usage and exits 2.
+ */
+#include "options.h"
+
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef enum xgo_host_apply_e {
+    XGO_HOST_APPLY_OK = 0,
+    XGO_HOST_APPLY_BAD_VALUE, /* message already written to err */
+    XGO_HOST_APPLY_HELP,
+    XGO_HOST_APPLY_VERSION
+} xgo_host_apply_t;
+
+typedef xgo_host_apply_t (*xgo_host_apply_fn)(xgo_host_options_t *opts, const char *value,
+                                               char *err, size_t err_size);
+
+typedef struct xgo_host_option_s {
+    const char *name;     /* long name without "--" */
+    char short_name;      /* single-letter alias, 0 for none */
+    const char *arg_name; /* shown in usage; NULL: the option takes no value */
+    const char *help;     /* one line */
+    xgo_host_apply_fn apply;
+} xgo_host_option_t;
+
+/* Parses a whole decimal string within lo..hi. */
+static int xgo_host_parse_ulong(const char *text, unsigned long lo, unsigned long hi,
+                                unsigned long *out)
+{
+    char *end = NULL;
+    unsigned long v;
+    if (text[0] < '0' || text[0] > '9') {
+        return 0; /* rejects "", "-1", " 5", "+5": strtoul would accept some */
+    }
+    errno = 0;
+    v = strtoul(text, &end, 10);
+    if (errno != 0 || *end != '\0' || v < lo || v > hi) {
+        return 0;
+    }
+    *out = v;
+    return 1;
+}
+
+static xgo_host_apply_t xgo_host_apply_link(xgo_host_options_t *opts, const char *value,
+                                             char *err, size_t err_size)
+{
+    if (value[0] == '\0') {
+        snprintf(err, err_size, "--link needs a non-empty PATH");
+        return XGO_HOST_APPLY_BAD_VALUE;
+    }
+    opts->link_path = value;
+    return XGO_HOST_APPLY_OK;
+}
+
+static xgo_host_apply_t xgo_host_apply_trace(xgo_host_options_t *opts, const char *value,
+                                              char *err, size_t err_size)
+{
+    (void)value, (void)err, (void)err_size;
+    opts->trace = 1;
+    return XGO_HOST_APPLY_OK;
+}
+
+static xgo_host_apply_t xgo_host_apply_baud_pacing(xgo_host_options_t *opts, const char *value,
+                                                    char *err, size_t err_size)
+{
+    (void)value, (void)err, (void)err_size;
+    opts->baud_pacing = 1;
+    return XGO_HOST_APPLY_OK;
+}
+
+static xgo_host_apply_t xgo_host_apply_profile(xgo_host_options_t *opts, const char *value,
+                                                char *err, size_t err_size)
+{
+    if (strcmp(value, "mini") == 0) {
+        opts->board.model = XGO_MODEL_MINI;
+    } else if (strcmp(value, "lite") == 0) {
+        opts->board.model = XGO_MODEL_LITE;
+    } else {
+        snprintf(err, err_size, "--profile must be mini or lite, not '%s'", value);
+        return XGO_HOST_APPLY_BAD_VALUE;
+    }
+    return XGO_HOST_APPLY_OK;
+}
+
+static xgo_host_apply_t xgo_host_apply_battery(xgo_host_options_t *opts, const char *value,
+                                                char *err, size_t err_size)
+{
+    unsigned long pct;
+    if (!xgo_host_parse_ulong(value, 0, 100, &pct)) {
+        snprintf(err, err_size, "--battery must be a whole number 0..100, not '%s'", value);
+        return XGO_HOST_APPLY_BAD_VALUE;
+    }
+    opts->board.battery_pct = (uint8_t)pct;
+    return XGO_HOST_APPLY_OK;
+}
+
+static xgo_host_apply_t xgo_host_apply_timeout(xgo_host_options_t *opts, const char *value,
+                                                char *err, size_t err_size)
+{
+    unsigned long ms;
+    /* An hour is far beyond any sensible silence timeout; the cap keeps
+     * typos like an extra zero-run from looking valid. */
+    if (!xgo_host_parse_ulong(value, 0, 3600000ul, &ms)) {
+        snprintf(err, err_size, "--timeout-ms must be a whole number of ms 0..3600000, not '%s'",
+                 value);
+        return XGO_HOST_APPLY_BAD_VALUE;
+    }
+    opts->board.parser_timeout_ms = (uint32_t)ms;
+    return XGO_HOST_APPLY_OK;
+}
+
+static xgo_host_apply_t xgo_host_apply_help(xgo_host_options_t *opts, const char *value,
+                                             char *err, size_t err_size)
+{
+    (void)opts, (void)value, (void)err, (void)err_size;
+    return XGO_HOST_APPLY_HELP;
+}
+
+static xgo_host_apply_t xgo_host_apply_version(xgo_host_options_t *opts, const char *value,
+                                                char *err, size_t err_size)
+{
+    (void)opts, (void)value, (void)err, (void)err_size;
+    return XGO_HOST_APPLY_VERSION;
+}
+
+static const xgo_host_option_t xgo_host_option_table[] = {
+    {"link", 0, "PATH", "keep a symlink PATH -> the pty (a stale symlink is replaced)",
+     xgo_host_apply_link},
+    {"trace", 0, NULL, "print one line per frame in, out or dropped on stderr", xgo_host_apply_trace},
+    {"baud-pacing", 0, NULL, "delay replies by their wire time at the speed the host set",
+     xgo_host_apply_baud_pacing},
+    {"profile", 0, "MODEL", "board model: mini (default) or lite", xgo_host_apply_profile},
+    {"battery", 0, "PCT", "initial battery level 0..100 (default 100)", xgo_host_apply_battery},
+    {"timeout-ms", 0, "N", "abandon a partial frame after N ms of silence, 0 = never (default 20)",
+     xgo_host_apply_timeout},
+    {"help", 'h', NULL, "show this help and exit", xgo_host_apply_help},
+    {"version", 0, NULL, "show the version and exit", xgo_host_apply_version},
+};
+
+#define XGO_HOST_OPTION_COUNT (sizeof xgo_host_option_table / sizeof xgo_host_option_table[0])
+
+/* Finds the row for "--name", "--name=value" or "-x"; *inline_value gets the
+ * part after '=' (or NULL). */
+static const xgo_host_option_t *xgo_host_option_lookup(const char *word, const char **inline_value)
+{
+    size_t i;
+    *inline_value = NULL;
+    if (word[0] == '-' && word[1] != '-' && word[1] != '\0' && word[2] == '\0') {
+        for (i = 0; i < XGO_HOST_OPTION_COUNT; i++) {
+            if (xgo_host_option_table[i].short_name == word[1]) {
+                return &xgo_host_option_table[i];
+            }
+        }
+        return NULL;
+    }
+    if (word[0] != '-' || word[1] != '-') {
+        return NULL;
+    }
+    word += 2;
+    for (i = 0; i < XGO_HOST_OPTION_COUNT; i++) {
+        const char *name = xgo_host_option_table[i].name;
+        size_t len = strlen(name);
+        if (strncmp(word, name, len) != 0) {
+            continue;
+        }
+        if (word[len] == '\0') {
+            return &xgo_host_option_table[i];
+        }
+        if (word[len] == '=') {
+            *inline_value = word + len + 1;
+            return &xgo_host_option_table[i];
+        }
+    }
+    return NULL;
+}
+
+xgo_host_parse_result_t xgo_host_options_parse(xgo_host_options_t *opts, int argc, char **argv,
+                                               char *error, size_t error_size)
+{
+    int i;
+    memset(opts, 0, sizeof *opts);
+    xgo_board_default_config(&opts->board);
+
+    for (i = 1; i < argc; i++) {
+        const char *word = argv[i];
+        const char *value = NULL;
+        const xgo_host_option_t *opt = xgo_host_option_lookup(word, &value);
+        xgo_host_apply_t applied;
+
+        if (opt == NULL) {
+            if (word[0] == '-') {
+                snprintf(error, error_size, "unknown option '%s'", word);
+            } else {
+                snprintf(error, error_size, "unexpected argument '%s'", word);
+            }
+            return XGO_HOST_PARSE_ERROR;
+        }
+        if (opt->arg_name != NULL && value == NULL) {
+            if (i + 1 >= argc) {
+                snprintf(error, error_size, "--%s needs a value (%s)", opt->name, opt->arg_name);
+                return XGO_HOST_PARSE_ERROR;
+            }
+            value = argv[++i];
+        } else if (opt->arg_name == NULL && value != NULL) {
+            snprintf(error, error_size, "--%s takes no value", opt->name);
+            return XGO_HOST_PARSE_ERROR;
+        }
+
+        applied = opt->apply(opts, value, error, error_size);
+        switch (applied) {
+        case XGO_HOST_APPLY_OK:
+            break;
+        case XGO_HOST_APPLY_BAD_VALUE:
+            return XGO_HOST_PARSE_ERROR;
+        case XGO_HOST_APPLY_HELP:
+            return XGO_HOST_PARSE_HELP;
+        case XGO_HOST_APPLY_VERSION:
+            return XGO_HOST_PARSE_VERSION;
+        }
+    }
+    return XGO_HOST_PARSE_RUN;
+}
+
+void xgo_host_options_usage(FILE *out)
+{
+    size_t i;
+    fputs("usage: xgo-emu [options]\n"
+          "Emulates the XGO-Mini driver board on a pseudo-terminal: prints the pty\n"
+          "path as the first line on stdout, then serves the serial protocol until\n"
+          "SIGINT or SIGTERM.\n"
+          "\n"
+          "options:\n",
+          out);
+    for (i = 0; i < XGO_HOST_OPTION_COUNT; i++) {
+        const xgo_host_option_t *opt = &xgo_host_option_table[i];
+        char left[48];
+        if (opt->short_name != 0) {
+            snprintf(left, sizeof left, "-%c, --%s%s%s", opt->short_name, opt->name,
+                     opt->arg_name ? " " : "", opt->arg_name ? opt->arg_name : "");
+        } else {
+            snprintf(left, sizeof left, "    --%s%s%s", opt->name, opt->arg_name ? " " : "",
+                     opt->arg_name ? opt->arg_name : "");
+        }
+        fprintf(out, "  %-22s %s\n", left, opt->help);
+    }
+    fputs("\n"
+          "exit status: 0 after SIGINT/SIGTERM, 1 on a runtime error, 2 on misuse.\n"
+          "Counters are printed on stderr at exit. See docs/xgo-emu.md.\n",
+          out);
+}

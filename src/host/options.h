@@ -1,0 +1,40 @@
+/*
+ * options.h - xgo-emu's command line. The parser is table-driven (options.c):
+ * adding an option means adding one row and one small apply function, and
+ * the usage text follows automatically.
+ */
+#ifndef XGO_HOST_OPTIONS_H
+#define XGO_HOST_OPTIONS_H
+
+#include <stddef.h>
+#include <stdio.h>
+#include <stdint.h>
+
+#include "xgo/board.h"
+
+#define XGO_EMU_VERSION "0.1.0"
+
+typedef struct xgo_host_options_s {
+    const char *link_path;    /* --link, NULL = no symlink */
+    int trace;                /* --trace */
+    int baud_pacing;          /* --baud-pacing */
+    xgo_board_config_t board; /* --profile, --battery, --timeout-ms */
+} xgo_host_options_t;
+
+typedef enum xgo_host_parse_result_e {
+    XGO_HOST_PARSE_RUN = 0, /* options are valid: start serving */
+    XGO_HOST_PARSE_HELP,    /* --help given: print usage, exit 0 */
+    XGO_HOST_PARSE_VERSION, /* --version given: print version, exit 0 */
+    XGO_HOST_PARSE_ERROR    /* misuse: `error` holds a one-line message */
+} xgo_host_parse_result_t;
+
+/* Fills opts with the defaults, then applies argv[1..argc-1]. On
+ * XGO_HOST_PARSE_ERROR, error (error_size bytes) says what was wrong, without
+ * the "xgo-emu: " prefix or a newline. */
+xgo_host_parse_result_t xgo_host_options_parse(xgo_host_options_t *opts, int argc, char **argv,
+                                               char *error, size_t error_size);
+
+/* The usage text, generated from the option table. */
+void xgo_host_options_usage(FILE *out);
+
+#endif /* XGO_HOST_OPTIONS_H */

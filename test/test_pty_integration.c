@@ -1,0 +1,912 @@
+/*
+ * test_pty_integration.c - xgo-emu end to end, over a real pseudo-terminal.
+ *
+ * Every test starts its own xgo-emu (XGO_EMU_PATH, fork/exec), talks to it
+ * the way the vendor's pyserial-based library does, and stops it with a
+ * signal. This is the one test that waits in real time; every wait is
+ * bounded, so a broken emulator fails the test instead of hanging it.
+ */
+#include <errno.h>
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/types.h>
+#include <sys/wait.h>
+#include <termios.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "unity.h"
+#include "xgo/protocol.h"
+
+#ifndef XGO_EMU_PATH
+#error "XGO_EMU_PATH must name the xgo-emu executable"
+#endif
+
+#define EMU_START_TIMEOUT_MS 5000
+#define EMU_EXIT_TIMEOUT_MS 5000
+#define REPLY_TIMEOUT_MS 1000 /* the vendor library polls for replies for 1 s */
+#define ERR_CAPTURE_BYTES 65536
+
+/* ------------------------------------------------------------- the child */
+
+typedef struct emu_s {
+    pid_t pid;       /* -1: none running */
+    int out_fd;      /* its stdout (we read the first line) */
+    int err_fd;      /* its stderr, captured into err */
+    char slave[256]; /* first stdout line */
+    char out[4096];  /* stdout text */
+    size_t out_len;
+    char err[ERR_CAPTURE_BYTES];
+    size_t err_len;
+    int status; /* waitpid status once reaped */
+} emu_t;
+
+static emu_t g_emu;
+static int g_port = -1;
+static char g_dir[64];
+static char g_link[128];
+
+static long long now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (long long)ts.tv_sec * 1000 + ts.tv_nsec / 1000000;
+}
+
+static double now_us_f(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec * 1e6 + (double)ts.tv_nsec / 1e3;
+}
+
+static void sleep_ms(long ms)
+{
+    struct timespec ts;
+    ts.tv_sec = ms / 1000;
+    ts.tv_nsec = (ms % 1000) * 1000000L;
+    while (nanosleep(&ts, &ts) != 0 && errno == EINTR) {
+    }
+}
+
+/* Appends whatever is readable now on fd (non-blocking) to buf. Returns 0 at
+ * EOF, 1 otherwise. */
+static int drain_fd(int fd, char *buf, size_t cap, size_t *len)
+{
+    for (;;) {
+        char tmp[4096];
+        ssize_t n = read(fd, tmp, sizeof tmp);
+        if (n > 0) {
+            size_t keep = (size_t)n;
+            if (keep > cap - 1 - *len) {
+                keep = cap - 1 - *len;
+            }
+            memcpy(buf + *len, tmp, keep);
+            *len += keep;
+            buf[*len] = '\0';
+            continue;
+        }
+        if (n == 0) {
+            return 0;
+        }
+        if (errno == EINTR) {
+            continue;
+        }
+        return 1; /* EAGAIN */
+    }
+}
+
+static void emu_drain(void)
+{
+    if (g_emu.err_fd >= 0 && !drain_fd(g_emu.err_fd, g_emu.err, sizeof g_emu.err, &g_emu.err_len)) {
+        close(g_emu.err_fd);
+        g_emu.err_fd = -1;
+    }
+    if (g_emu.out_fd >= 0 && !drain_fd(g_emu.out_fd, g_emu.out, sizeof g_emu.out, &g_emu.out_len)) {
+        close(g_emu.out_fd);
+        g_emu.out_fd = -1;
+    }
+}
+
+/* Starts xgo-emu with argv[1..] = args (NULL-terminated). */
+static void emu_spawn(const char *const *args)
+{
+    int out_pipe[2];
+    int err_pipe[2];
+    const char *argv[32];
+    size_t argc = 0;
+
+    argv[argc++] = XGO_EMU_PATH;
+    while (*args != NULL && argc < 31) {
+        argv[argc++] = *args++;
+    }
+    argv[argc] = NULL;
+
+    TEST_ASSERT_EQUAL_INT(0, pipe(out_pipe));
+    TEST_ASSERT_EQUAL_INT(0, pipe(err_pipe));
+    g_emu.pid = fork();
+    TEST_ASSERT_TRUE_MESSAGE(g_emu.pid >= 0, "fork failed");
+    if (g_emu.pid == 0) {
+        dup2(out_pipe[1], STDOUT_FILENO);
+        dup2(err_pipe[1], STDERR_FILENO);
+        close(out_pipe[0]);
+        close(out_pipe[1]);
+        close(err_pipe[0]);
+        close(err_pipe[1]);
+        execv(XGO_EMU_PATH, (char *const *)argv);
+        _exit(127);
+    }
+    close(out_pipe[1]);
+    close(err_pipe[1]);
+    g_emu.out_fd = out_pipe[0];
+    g_emu.err_fd = err_pipe[0];
+    fcntl(g_emu.out_fd, F_SETFL, O_NONBLOCK);
+    fcntl(g_emu.err_fd, F_SETFL, O_NONBLOCK);
+    fcntl(g_emu.out_fd, F_SETFD, FD_CLOEXEC);
+    fcntl(g_emu.err_fd, F_SETFD, FD_CLOEXEC);
+}
+
+/* Waits (bounded) for the child to exit; returns 1 if it did. */
+static int emu_wait_exit(long timeout_ms)
+{
+    long long deadline = now_ms() + timeout_ms;
+    while (g_emu.pid > 0) {
+        int status;
+        pid_t r = waitpid(g_emu.pid, &status, WNOHANG);
+        emu_drain();
+        if (r == g_emu.pid) {
+            g_emu.status = status;
+            g_emu.pid = -1;
+            break;
+        }
+        if (now_ms() > deadline) {
+            return 0;
+        }
+        sleep_ms(5);
+    }
+    /* Collect the rest of its output (EOF comes quickly once it is gone). */
+    deadline = now_ms() + 1000;
+    while ((g_emu.err_fd >= 0 || g_emu.out_fd >= 0) && now_ms() < deadline) {
+        emu_drain();
+        sleep_ms(2);
+    }
+    return 1;
+}
+
+/* Runs xgo-emu to completion (for options that make it exit at once). */
+static void emu_run_to_exit(const char *const *args)
+{
+    emu_spawn(args);
+    TEST_ASSERT_TRUE_MESSAGE(emu_wait_exit(EMU_EXIT_TIMEOUT_MS), "xgo-emu did not exit");
+    TEST_ASSERT_TRUE(WIFEXITED(g_emu.status));
+}
+
+/* Starts xgo-emu and waits for its first stdout line (the pty path). */
+static void emu_start(const char *const *args)
+{
+    long long deadline;
+    char *nl;
+    emu_spawn(args);
+    deadline = now_ms() + EMU_START_TIMEOUT_MS;
+    while ((nl = strchr(g_emu.out, '\n')) == NULL) {
+        struct pollfd pfd;
+        TEST_ASSERT_TRUE_MESSAGE(now_ms() < deadline, "no pty path on xgo-emu's stdout");
+        TEST_ASSERT_TRUE_MESSAGE(g_emu.out_fd >= 0, "xgo-emu closed stdout without a path");
+        pfd.fd = g_emu.out_fd;
+        pfd.events = POLLIN;
+        poll(&pfd, 1, 50);
+        emu_drain();
+    }
+    TEST_ASSERT_TRUE((size_t)(nl - g_emu.out) < sizeof g_emu.slave);
+    memcpy(g_emu.slave, g_emu.out, (size_t)(nl - g_emu.out));
+    g_emu.slave[nl - g_emu.out] = '\0';
+}
+
+/* The usual case: serve with --link g_link plus extra options. */
+static void emu_start_linked(const char *extra1, const char *extra2)
+{
+    const char *args[5];
+    size_t n = 0;
+    char target[256];
+    ssize_t len;
+    args[n++] = "--link";
+    args[n++] = g_link;
+    if (extra1 != NULL) {
+        args[n++] = extra1;
+    }
+    if (extra2 != NULL) {
+        args[n++] = extra2;
+    }
+    args[n] = NULL;
+    emu_start(args);
+    len = readlink(g_link, target, sizeof target - 1);
+    TEST_ASSERT_TRUE_MESSAGE(len > 0, "--link did not create the symlink");
+    target[len] = '\0';
+    TEST_ASSERT_EQUAL_STRING(g_emu.slave, target);
+}
+
+/* Stops the running emulator with sig and checks a clean exit: status 0,
+ * link removed, counters printed. */
+static void emu_stop_cleanly(int sig)
+{
+    TEST_ASSERT_TRUE(g_emu.pid > 0);
+    TEST_ASSERT_EQUAL_INT(0, kill(g_emu.pid, sig));
+    TEST_ASSERT_TRUE_MESSAGE(emu_wait_exit(EMU_EXIT_TIMEOUT_MS), "xgo-emu ignored the signal");
+    TEST_ASSERT_TRUE_MESSAGE(WIFEXITED(g_emu.status), "xgo-emu did not exit normally");
+    TEST_ASSERT_EQUAL_INT(0, WEXITSTATUS(g_emu.status));
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(g_emu.err, "counters at exit"), "no counters at exit");
+}
+
+static void assert_link_gone(void)
+{
+    struct stat st;
+    TEST_ASSERT_TRUE_MESSAGE(lstat(g_link, &st) != 0 && errno == ENOENT,
+                             "the link was not removed at exit");
+}
+
+/* -------------------------------------------------------------- the host */
+
+/* Opens the port the way pyserial does: non-blocking, raw 8N1, no flow
+ * control, VMIN = VTIME = 0, input flushed. */
+static int port_open_like_pyserial(const char *path, speed_t speed)
+{
+    struct termios tio;
+    int fd = open(path, O_RDWR | O_NOCTTY | O_NONBLOCK);
+    TEST_ASSERT_TRUE_MESSAGE(fd >= 0, "cannot open the emulator's port");
+    TEST_ASSERT_EQUAL_INT(0, tcgetattr(fd, &tio));
+    tio.c_cflag |= (tcflag_t)(CLOCAL | CREAD);
+    tio.c_lflag &= (tcflag_t) ~(ICANON | ECHO | ECHOE | ECHOK | ECHONL | ISIG | IEXTEN);
+    tio.c_oflag &= (tcflag_t) ~(OPOST | ONLCR | OCRNL);
+    tio.c_iflag &= (tcflag_t) ~(INLCR | IGNCR | ICRNL | IGNBRK | INPCK | ISTRIP | IXON | IXOFF);
+    tio.c_cflag &= (tcflag_t) ~(CSIZE | PARENB | CSTOPB);
+    tio.c_cflag |= CS8;
+    tio.c_cc[VMIN] = 0;
+    tio.c_cc[VTIME] = 0;
+    cfsetispeed(&tio, speed);
+    cfsetospeed(&tio, speed);
+    TEST_ASSERT_EQUAL_INT(0, tcsetattr(fd, TCSANOW, &tio));
+    tcflush(fd, TCIFLUSH);
+    return fd;
+}
+
+/* Opens the port without touching its settings: a host that never
+ * configures the line sees whatever xgo-emu set up. */
+static int port_open_untouched(const char *path)
+{
+    int fd = open(path, O_RDWR | O_NOCTTY | O_NONBLOCK);
+    TEST_ASSERT_TRUE_MESSAGE(fd >= 0, "cannot open the emulator's port");
+    return fd;
+}
+
+static void port_write(int fd, const uint8_t *bytes, size_t n)
+{
+    long long deadline = now_ms() + REPLY_TIMEOUT_MS;
+    size_t done = 0;
+    while (done < n) {
+        ssize_t w = write(fd, bytes + done, n - done);
+        if (w > 0) {
+            done += (size_t)w;
+            continue;
+        }
+        TEST_ASSERT_TRUE_MESSAGE(w < 0 && (errno == EAGAIN || errno == EINTR), "write failed");
+        TEST_ASSERT_TRUE_MESSAGE(now_ms() < deadline, "write to the port stalled");
+        sleep_ms(1);
+    }
+}
+
+/* Reads up to n bytes, waiting at most timeout_ms overall; returns the count. */
+static size_t port_read(int fd, uint8_t *buf, size_t n, long timeout_ms)
+{
+    long long deadline = now_ms() + timeout_ms;
+    size_t got = 0;
+    while (got < n) {
+        struct pollfd pfd;
+        long long left = deadline - now_ms();
+        ssize_t r;
+        if (left <= 0) {
+            break;
+        }
+        pfd.fd = fd;
+        pfd.events = POLLIN;
+        if (poll(&pfd, 1, (int)left) <= 0) {
+            continue;
+        }
+        r = read(fd, buf + got, n - got);
+        if (r > 0) {
+            got += (size_t)r;
+        }
+    }
+    return got;
+}
+
+/* Bytes that arrive within ms (expected: none). */
+static size_t port_silence(int fd, long ms)
+{
+    uint8_t buf[512];
+    return port_read(fd, buf, sizeof buf, ms);
+}
+
+static size_t read_request(uint8_t addr, uint8_t count, uint8_t *out)
+{
+    return xgo_frame_encode(XGO_TYPE_READ, addr, &count, 1, out, XGO_READ_REQUEST_LEN);
+}
+
+/* Reads register bytes through the port: request, then the exact reply. */
+static void read_regs(int fd, uint8_t addr, uint8_t count, uint8_t *values)
+{
+    uint8_t req[XGO_READ_REQUEST_LEN];
+    uint8_t reply[XGO_FRAME_MAX_LEN];
+    uint8_t expect_head[5] = {0x55, 0x00, 0, XGO_TYPE_READ_REPLY, 0};
+    size_t len = (size_t)count + XGO_FRAME_OVERHEAD;
+    expect_head[2] = (uint8_t)len;
+    expect_head[4] = addr;
+    read_request(addr, count, req);
+    port_write(fd, req, sizeof req);
+    TEST_ASSERT_EQUAL_INT_MESSAGE((int)len, (int)port_read(fd, reply, len, REPLY_TIMEOUT_MS),
+                                  "incomplete reply");
+    TEST_ASSERT_EQUAL_HEX8_ARRAY(expect_head, reply, 5);
+    TEST_ASSERT_EQUAL_HEX8(xgo_frame_checksum((uint8_t)len, XGO_TYPE_READ_REPLY, addr, reply + 5,
+                                              count),
+                           reply[len - 3]);
+    TEST_ASSERT_EQUAL_HEX8(0x00, reply[len - 2]);
+    TEST_ASSERT_EQUAL_HEX8(0xAA, reply[len - 1]);
+    memcpy(values, reply + 5, count);
+}
+
+static void write_regs(int fd, uint8_t addr, const uint8_t *values, size_t n)
+{
+    uint8_t frame[XGO_FRAME_MAX_LEN];
+    size_t len = xgo_frame_encode(XGO_TYPE_WRITE, addr, values, n, frame, sizeof frame);
+    TEST_ASSERT_TRUE(len > 0);
+    port_write(fd, frame, len);
+}
+
+/* CPU time (user + system) the emulator has used, in clock ticks; -1 when
+ * /proc is not available. */
+static long emu_cpu_ticks(void)
+{
+    char path[64];
+    char buf[1024];
+    const char *p;
+    unsigned long utime, stime;
+    FILE *f;
+    size_t n;
+    snprintf(path, sizeof path, "/proc/%ld/stat", (long)g_emu.pid);
+    f = fopen(path, "r");
+    if (f == NULL) {
+        return -1;
+    }
+    n = fread(buf, 1, sizeof buf - 1, f);
+    fclose(f);
+    buf[n] = '\0';
+    p = strrchr(buf, ')'); /* the command name may contain spaces */
+    if (p == NULL ||
+        sscanf(p + 2, "%*c %*d %*d %*d %*d %*d %*u %*u %*u %*u %*u %lu %lu", &utime, &stime) != 2) {
+        return -1;
+    }
+    return (long)(utime + stime);
+}
+
+/* -------------------------------------------------------- fixtures */
+
+/* Forgets a child that has exited (closing what is left of its pipes). */
+static void emu_reset(void)
+{
+    if (g_emu.out_fd >= 0) {
+        close(g_emu.out_fd);
+    }
+    if (g_emu.err_fd >= 0) {
+        close(g_emu.err_fd);
+    }
+    memset(&g_emu, 0, sizeof g_emu);
+    g_emu.pid = -1;
+    g_emu.out_fd = -1;
+    g_emu.err_fd = -1;
+}
+
+void setUp(void)
+{
+    g_emu.out_fd = -1;
+    g_emu.err_fd = -1;
+    emu_reset();
+    g_port = -1;
+}
+
+void tearDown(void)
+{
+    if (g_port >= 0) {
+        close(g_port);
+        g_port = -1;
+    }
+    if (g_emu.pid > 0) {
+        kill(g_emu.pid, SIGKILL);
+        waitpid(g_emu.pid, NULL, 0);
+        g_emu.pid = -1;
+    }
+    emu_reset();
+    /* whatever a failed test left there */
+    if (unlink(g_link) != 0) {
+        rmdir(g_link);
+    }
+}
+
+/* ------------------------------------------------------------- tests */
+
+static const uint8_t k_spec_read[] = {0x55, 0x00, 0x09, 0x02, 0x50, 0x0C, 0x98, 0x00, 0xAA};
+static const uint8_t k_spec_reply[] = {0x55, 0x00, 0x14, 0x12, 0x50, 0x80, 0x80, 0x80, 0x80, 0x80,
+                                       0x80, 0x80, 0x80, 0x80, 0x80, 0x80, 0x80, 0x89, 0x00, 0xAA};
+static const uint8_t k_spec_write[] = {0x55, 0x00, 0x09, 0x00, 0x30, 0xFF, 0xC7, 0x00, 0xAA};
+
+static void test_prints_pty_path_first_and_links_it(void)
+{
+    emu_start_linked(NULL, NULL);
+    TEST_ASSERT_EQUAL_INT(0, strncmp(g_emu.slave, "/dev/", 5));
+    g_port = port_open_like_pyserial(g_link, B115200);
+    TEST_ASSERT_TRUE(isatty(g_port));
+    close(g_port);
+    g_port = -1;
+    emu_stop_cleanly(SIGTERM);
+    assert_link_gone();
+}
+
+static void test_spec_read_example_gets_the_spec_reply(void)
+{
+    uint8_t reply[sizeof k_spec_reply];
+    emu_start_linked(NULL, NULL);
+    g_port = port_open_like_pyserial(g_link, B115200);
+    port_write(g_port, k_spec_read, sizeof k_spec_read);
+    TEST_ASSERT_EQUAL_INT((int)sizeof reply,
+                          (int)port_read(g_port, reply, sizeof reply, REPLY_TIMEOUT_MS));
+    TEST_ASSERT_EQUAL_HEX8_ARRAY(k_spec_reply, reply, sizeof reply);
+    TEST_ASSERT_EQUAL_INT(0, (int)port_silence(g_port, 100)); /* nothing more */
+    emu_stop_cleanly(SIGTERM);
+    assert_link_gone();
+}
+
+static void test_spec_write_example_gets_no_reply_and_takes_effect(void)
+{
+    uint8_t vx;
+    emu_start_linked(NULL, NULL);
+    g_port = port_open_like_pyserial(g_link, B115200);
+    port_write(g_port, k_spec_write, sizeof k_spec_write);
+    TEST_ASSERT_EQUAL_INT(0, (int)port_silence(g_port, 200));
+    read_regs(g_port, 0x30, 1, &vx);
+    TEST_ASSERT_EQUAL_HEX8(0xFF, vx);
+    emu_stop_cleanly(SIGTERM);
+}
+
+static void test_garbage_then_request_gets_its_reply(void)
+{
+    /* Noise, a truncated header, a frame with an impossible length, flow
+     * control and line-editing bytes, then a stray header byte right before
+     * the real request. */
+    static const uint8_t garbage[] = {0x01, 0xFF, 0x55, 0x13, 0x11, 0x55, 0x00, 0x03,
+                                      0xAA, 0x00, 0xAA, 0x0D, 0x0A, 0x03, 0x55};
+    uint8_t reply[sizeof k_spec_reply];
+    emu_start_linked(NULL, NULL);
+    g_port = port_open_like_pyserial(g_link, B115200);
+    port_write(g_port, garbage, sizeof garbage);
+    port_write(g_port, k_spec_read, sizeof k_spec_read);
+    TEST_ASSERT_EQUAL_INT((int)sizeof reply,
+                          (int)port_read(g_port, reply, sizeof reply, REPLY_TIMEOUT_MS));
+    TEST_ASSERT_EQUAL_HEX8_ARRAY(k_spec_reply, reply, sizeof reply);
+    TEST_ASSERT_EQUAL_INT(0, (int)port_silence(g_port, 100));
+    emu_stop_cleanly(SIGTERM);
+}
+
+/* The port is raw from the start: a host that never sets raw mode still gets
+ * CR, LF, XON, XOFF, ^C, ^D, ^Z, DEL, ... through unchanged both ways. */
+static void test_control_bytes_pass_unchanged_without_host_setup(void)
+{
+    static const uint8_t values[10] = {0x0D, 0x11, 0x13, 0x03, 0x0A,
+                                       0x7F, 0x04, 0x1A, 0x1C, 0x00};
+    uint8_t back[10];
+    emu_start_linked(NULL, NULL);
+    g_port = port_open_untouched(g_link);
+    write_regs(g_port, 0x30, values, sizeof values); /* vx .. period_roll: any value */
+    read_regs(g_port, 0x30, sizeof back, back);
+    TEST_ASSERT_EQUAL_HEX8_ARRAY(values, back, sizeof values);
+    emu_stop_cleanly(SIGTERM);
+}
+
+/* The vendor's auto-detect opens and closes the port repeatedly, at
+ * different speeds. Every session that reads gets exactly its own reply.
+ * Some sessions leave without reading theirs: one right after writing the
+ * request (the next session then flushes before asking, as the vendor
+ * library does before every request), one after the reply has arrived. */
+static void test_close_and_reopen_100_times(void)
+{
+    int i;
+    int after_abandon = 0;
+    emu_start_linked(NULL, NULL);
+    for (i = 0; i < 100; i++) {
+        uint8_t addr = (uint8_t)(0x50 + i % 12);
+        uint8_t req[XGO_READ_REQUEST_LEN];
+        uint8_t value = 0;
+        g_port = port_open_like_pyserial(g_link, (i % 3 == 0) ? B9600 : B115200);
+        if (after_abandon) {
+            /* A reply to the abandoned request may be on its way (a real
+             * board would send it too): flush once it has surely arrived. */
+            sleep_ms(50);
+            tcflush(g_port, TCIFLUSH);
+            after_abandon = 0;
+        }
+        if (i % 10 == 9) {
+            read_request(addr, 12, req);
+            port_write(g_port, req, sizeof req); /* leave at once */
+            after_abandon = 1;
+        } else if (i % 10 == 4) {
+            read_request(addr, 12, req);
+            port_write(g_port, req, sizeof req);
+            sleep_ms(20); /* leave with the reply unread */
+        } else {
+            read_regs(g_port, addr, 1, &value);
+            TEST_ASSERT_EQUAL_HEX8(0x80, value);
+        }
+        close(g_port);
+        g_port = -1;
+    }
+    g_port = port_open_like_pyserial(g_link, B115200);
+    sleep_ms(50);
+    tcflush(g_port, TCIFLUSH);
+    {
+        uint8_t reply[sizeof k_spec_reply];
+        port_write(g_port, k_spec_read, sizeof k_spec_read);
+        TEST_ASSERT_EQUAL_INT((int)sizeof reply,
+                              (int)port_read(g_port, reply, sizeof reply, REPLY_TIMEOUT_MS));
+        TEST_ASSERT_EQUAL_HEX8_ARRAY(k_spec_reply, reply, sizeof reply);
+        TEST_ASSERT_EQUAL_INT(0, (int)port_silence(g_port, 50));
+    }
+    close(g_port);
+    g_port = -1;
+    emu_stop_cleanly(SIGTERM);
+    assert_link_gone();
+}
+
+/* Replies a host left unread must not reach the next session, even one that
+ * does not flush its input on open. */
+static void test_unread_replies_do_not_leak_into_the_next_session(void)
+{
+    uint8_t req[XGO_READ_REQUEST_LEN];
+    uint8_t value;
+    emu_start_linked(NULL, NULL);
+    g_port = port_open_like_pyserial(g_link, B115200);
+    read_request(0x50, 12, req);
+    port_write(g_port, req, sizeof req);
+    sleep_ms(50); /* the reply is now waiting in the pty */
+    close(g_port);
+    sleep_ms(50); /* xgo-emu notices the hang-up within a tick */
+    g_port = port_open_untouched(g_link);
+    TEST_ASSERT_EQUAL_INT(0, (int)port_silence(g_port, 50));
+    read_regs(g_port, 0x30, 1, &value);
+    TEST_ASSERT_EQUAL_HEX8(0x80, value);
+    emu_stop_cleanly(SIGTERM);
+}
+
+/* No busy loop, with a host attached and idle, or with none attached after a
+ * hang-up (the master then polls POLLHUP continuously). */
+static void test_idle_cpu_stays_low(void)
+{
+    long hz = sysconf(_SC_CLK_TCK);
+    long before, after;
+    emu_start_linked(NULL, NULL);
+    if (emu_cpu_ticks() < 0 || hz <= 0) {
+        emu_stop_cleanly(SIGTERM);
+        TEST_IGNORE_MESSAGE("no /proc/PID/stat: CPU use not measured");
+    }
+    g_port = port_open_like_pyserial(g_link, B115200);
+    before = emu_cpu_ticks();
+    sleep_ms(1000);
+    after = emu_cpu_ticks();
+    /* A busy loop would use ~100 % of a CPU; ticking at 500 Hz uses ~1 %.
+     * The bound leaves room for sanitizers and loaded CI machines. */
+    TEST_ASSERT_TRUE_MESSAGE((after - before) * 100 < hz * 30, "busy while a host is attached");
+    close(g_port);
+    g_port = -1;
+    sleep_ms(50);
+    before = emu_cpu_ticks();
+    sleep_ms(1000);
+    after = emu_cpu_ticks();
+    TEST_ASSERT_TRUE_MESSAGE((after - before) * 100 < hz * 30, "busy with no host attached");
+    emu_stop_cleanly(SIGTERM);
+}
+
+/* 100 maximal reads written in one go: 25,500 reply bytes, far beyond the
+ * board's transmit buffer and the pty's buffer. None may be lost. */
+static void test_pipelined_large_reads_all_arrive(void)
+{
+    enum { REQUESTS = 100, COUNT = XGO_FRAME_MAX_DATA, REPLY = COUNT + XGO_FRAME_OVERHEAD };
+    static uint8_t reqs[REQUESTS * XGO_READ_REQUEST_LEN];
+    static uint8_t replies[REQUESTS * REPLY];
+    uint8_t overflows[4];
+    int i;
+    emu_start_linked(NULL, NULL);
+    g_port = port_open_like_pyserial(g_link, B115200);
+    for (i = 0; i < REQUESTS; i++) {
+        read_request(0x00, (uint8_t)COUNT, reqs + i * XGO_READ_REQUEST_LEN);
+    }
+    port_write(g_port, reqs, sizeof reqs);
+    TEST_ASSERT_EQUAL_INT((int)sizeof replies,
+                          (int)port_read(g_port, replies, sizeof replies, 10000));
+    for (i = 0; i < REQUESTS; i++) {
+        const uint8_t *r = replies + i * REPLY;
+        TEST_ASSERT_EQUAL_HEX8(0x55, r[0]);
+        TEST_ASSERT_EQUAL_HEX8(0x00, r[1]);
+        TEST_ASSERT_EQUAL_HEX8(REPLY, r[2]);
+        TEST_ASSERT_EQUAL_HEX8(XGO_TYPE_READ_REPLY, r[3]);
+        TEST_ASSERT_EQUAL_HEX8(0x00, r[4]);
+        TEST_ASSERT_EQUAL_HEX8(0x00, r[REPLY - 2]);
+        TEST_ASSERT_EQUAL_HEX8(0xAA, r[REPLY - 1]);
+    }
+    /* The board's own tx_overflow counter (diagnostic block) stayed 0. */
+    read_regs(g_port, (uint8_t)(0xD0 + 4 * 11), 4, overflows);
+    TEST_ASSERT_EQUAL_HEX8(0, overflows[0] | overflows[1] | overflows[2] | overflows[3]);
+    emu_stop_cleanly(SIGTERM);
+}
+
+static double timed_spec_read_ms(int fd)
+{
+    uint8_t reply[sizeof k_spec_reply];
+    double t0 = now_us_f();
+    port_write(fd, k_spec_read, sizeof k_spec_read);
+    TEST_ASSERT_EQUAL_INT((int)sizeof reply, (int)port_read(fd, reply, sizeof reply, 2000));
+    TEST_ASSERT_EQUAL_HEX8_ARRAY(k_spec_reply, reply, sizeof reply);
+    return (now_us_f() - t0) / 1000.0;
+}
+
+/* At 1200 bit/s the 9-byte request and the 20-byte reply take
+ * 29 * 10 / 1200 s = 241.7 ms on a real wire. */
+static void test_baud_pacing_delays_replies_by_wire_time(void)
+{
+    double ms;
+    emu_start_linked("--baud-pacing", NULL);
+    g_port = port_open_like_pyserial(g_link, B1200);
+    ms = timed_spec_read_ms(g_port);
+    TEST_ASSERT_TRUE_MESSAGE(ms >= 240.0, "paced reply arrived faster than the wire allows");
+    TEST_ASSERT_TRUE_MESSAGE(ms < 1000.0, "paced reply far too slow");
+    emu_stop_cleanly(SIGTERM);
+}
+
+static void test_without_pacing_replies_are_immediate(void)
+{
+    emu_start_linked(NULL, NULL);
+    g_port = port_open_like_pyserial(g_link, B1200);
+    TEST_ASSERT_TRUE_MESSAGE(timed_spec_read_ms(g_port) < 150.0, "unpaced reply was slow");
+    emu_stop_cleanly(SIGTERM);
+}
+
+static void test_sigint_exits_0_and_removes_link(void)
+{
+    emu_start_linked(NULL, NULL);
+    emu_stop_cleanly(SIGINT);
+    assert_link_gone();
+}
+
+static void test_link_onto_a_regular_file_is_refused(void)
+{
+    const char *args[] = {"--link", g_link, NULL};
+    char content[16] = {0};
+    FILE *f = fopen(g_link, "w");
+    TEST_ASSERT_NOT_NULL(f);
+    fputs("precious", f);
+    fclose(f);
+
+    emu_run_to_exit(args);
+    TEST_ASSERT_NOT_EQUAL(0, WEXITSTATUS(g_emu.status));
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(g_emu.err, "xgo-emu: "), g_emu.err);
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(g_emu.err, "not a symlink"), g_emu.err);
+    TEST_ASSERT_EQUAL_INT(0, (int)g_emu.out_len); /* no path printed */
+
+    f = fopen(g_link, "r");
+    TEST_ASSERT_NOT_NULL(f);
+    TEST_ASSERT_TRUE(fgets(content, sizeof content, f) != NULL);
+    fclose(f);
+    TEST_ASSERT_EQUAL_STRING("precious", content);
+}
+
+static void test_link_onto_a_directory_is_refused(void)
+{
+    const char *args[] = {"--link", g_link, NULL};
+    struct stat st;
+    TEST_ASSERT_EQUAL_INT(0, mkdir(g_link, 0700));
+    emu_run_to_exit(args);
+    TEST_ASSERT_NOT_EQUAL(0, WEXITSTATUS(g_emu.status));
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(g_emu.err, "not a symlink"), g_emu.err);
+    TEST_ASSERT_EQUAL_INT(0, lstat(g_link, &st));
+    TEST_ASSERT_TRUE(S_ISDIR(st.st_mode));
+    rmdir(g_link);
+}
+
+static void test_stale_symlink_is_replaced(void)
+{
+    TEST_ASSERT_EQUAL_INT(0, symlink("/nonexistent/xgo-old-pty", g_link));
+    emu_start_linked(NULL, NULL); /* asserts the link now points at our pty */
+    g_port = port_open_like_pyserial(g_link, B115200);
+    {
+        uint8_t vx;
+        read_regs(g_port, 0x30, 1, &vx);
+        TEST_ASSERT_EQUAL_HEX8(0x80, vx);
+    }
+    emu_stop_cleanly(SIGTERM);
+    assert_link_gone();
+}
+
+/* At exit the link is removed only if it still points at our pty. */
+static void test_repointed_link_is_left_alone_at_exit(void)
+{
+    char target[64];
+    ssize_t len;
+    emu_start_linked(NULL, NULL);
+    TEST_ASSERT_EQUAL_INT(0, unlink(g_link));
+    TEST_ASSERT_EQUAL_INT(0, symlink("/dev/null", g_link));
+    emu_stop_cleanly(SIGTERM);
+    len = readlink(g_link, target, sizeof target - 1);
+    TEST_ASSERT_TRUE_MESSAGE(len > 0, "someone else's link was removed");
+    target[len] = '\0';
+    TEST_ASSERT_EQUAL_STRING("/dev/null", target);
+}
+
+/* Misuse: exit 2, one line "xgo-emu: ..." then the usage, nothing on stdout. */
+static void assert_misuse(const char *const *args)
+{
+    const char *nl;
+    emu_run_to_exit(args);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(2, WEXITSTATUS(g_emu.status), args[0]);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(0, strncmp(g_emu.err, "xgo-emu: ", 9), g_emu.err);
+    nl = strchr(g_emu.err, '\n');
+    TEST_ASSERT_NOT_NULL(nl);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(0, strncmp(nl + 1, "usage: xgo-emu", 14), g_emu.err);
+    TEST_ASSERT_EQUAL_INT(0, (int)g_emu.out_len);
+}
+
+static void test_bad_options_exit_2_with_one_line_and_usage(void)
+{
+    static const char *const unknown[] = {"--bogus", NULL};
+    static const char *const battery[] = {"--battery", "150", NULL};
+    static const char *const battery_text[] = {"--battery=abc", NULL};
+    static const char *const profile[] = {"--profile", "x", NULL};
+    static const char *const timeout[] = {"--timeout-ms", "-5", NULL};
+    static const char *const missing[] = {"--link", NULL};
+    static const char *const flag_value[] = {"--trace=yes", NULL};
+    static const char *const positional[] = {"/dev/ttyUSB0", NULL};
+    const char *const *cases[] = {unknown, battery, battery_text, profile,
+                                  timeout, missing, flag_value, positional};
+    size_t i;
+    for (i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        assert_misuse(cases[i]);
+        emu_reset();
+    }
+}
+
+static void test_help_and_version_exit_0(void)
+{
+    static const char *const help[] = {"--help", NULL};
+    static const char *const version[] = {"--version", NULL};
+    emu_run_to_exit(help);
+    TEST_ASSERT_EQUAL_INT(0, WEXITSTATUS(g_emu.status));
+    TEST_ASSERT_EQUAL_INT(0, strncmp(g_emu.out, "usage: xgo-emu", 14));
+    TEST_ASSERT_NOT_NULL(strstr(g_emu.out, "--baud-pacing"));
+    emu_reset();
+    emu_run_to_exit(version);
+    TEST_ASSERT_EQUAL_INT(0, WEXITSTATUS(g_emu.status));
+    TEST_ASSERT_EQUAL_STRING("xgo-emu 0.1.0\n", g_emu.out);
+}
+
+/* The line of the trace that contains `what`, copied into line. */
+static int find_trace_line(const char *what, char *line, size_t size)
+{
+    const char *hit = strstr(g_emu.err, what);
+    const char *start, *end;
+    if (hit == NULL) {
+        return 0;
+    }
+    start = hit;
+    while (start > g_emu.err && start[-1] != '\n') {
+        start--;
+    }
+    end = strchr(hit, '\n');
+    if (end == NULL || (size_t)(end - start) >= size) {
+        return 0;
+    }
+    memcpy(line, start, (size_t)(end - start));
+    line[end - start] = '\0';
+    return 1;
+}
+
+static void test_trace_prints_one_line_per_frame(void)
+{
+    static const uint8_t bad_sum[] = {0x55, 0x00, 0x09, 0x02, 0x50, 0x0C, 0x99, 0x00, 0xAA};
+    static const uint8_t battery = 5;
+    static const uint8_t arm = 1;
+    uint8_t reply[sizeof k_spec_reply];
+    char line[512];
+    char expect[64];
+    emu_start_linked("--trace", NULL);
+    g_port = port_open_like_pyserial(g_link, B115200);
+    port_write(g_port, k_spec_read, sizeof k_spec_read);
+    TEST_ASSERT_EQUAL_INT((int)sizeof reply,
+                          (int)port_read(g_port, reply, sizeof reply, REPLY_TIMEOUT_MS));
+    port_write(g_port, bad_sum, sizeof bad_sum);
+    port_write(g_port, k_spec_write, sizeof k_spec_write);
+    write_regs(g_port, 0x01, &battery, 1); /* read-only */
+    write_regs(g_port, 0x90, &arm, 1);     /* not on the Mini */
+    TEST_ASSERT_EQUAL_INT(0, (int)port_silence(g_port, 100));
+    emu_stop_cleanly(SIGTERM);
+
+    TEST_ASSERT_TRUE_MESSAGE(find_trace_line(" rx read 0x50 servo11 n=12", line, sizeof line),
+                             g_emu.err);
+    TEST_ASSERT_TRUE_MESSAGE(find_trace_line(" tx reply 0x50 servo11 n=12 "
+                                             "[80 80 80 80 80 80 80 80 80 80 80 80]",
+                                             line, sizeof line),
+                             g_emu.err);
+    snprintf(expect, sizeof expect, " drop %s", xgo_drop_reason_name(XGO_DROP_BAD_CHECKSUM));
+    TEST_ASSERT_TRUE_MESSAGE(find_trace_line(expect, line, sizeof line), g_emu.err);
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(line, "55 00 09 02 50 0C 99 00 AA"), line);
+    TEST_ASSERT_TRUE_MESSAGE(find_trace_line(" rx write 0x30 vx n=1 [FF] vx=FF(+100%)", line,
+                                             sizeof line),
+                             g_emu.err);
+    snprintf(expect, sizeof expect, " drop %s", xgo_drop_reason_name(XGO_DROP_READ_ONLY));
+    TEST_ASSERT_TRUE_MESSAGE(find_trace_line(expect, line, sizeof line), g_emu.err);
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(line, "battery"), line);
+    TEST_ASSERT_TRUE_MESSAGE(find_trace_line("ignored (not on the Mini)", line, sizeof line),
+                             g_emu.err);
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(line, "rx write 0x90"), line);
+}
+
+static void test_counters_are_printed_at_exit(void)
+{
+    uint8_t vx;
+    emu_start_linked(NULL, NULL);
+    g_port = port_open_like_pyserial(g_link, B115200);
+    read_regs(g_port, 0x30, 1, &vx);
+    read_regs(g_port, 0x31, 1, &vx);
+    emu_stop_cleanly(SIGTERM);
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(g_emu.err, "  frames_ok              2\n"), g_emu.err);
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(g_emu.err, "  bad_checksum           0\n"), g_emu.err);
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(g_emu.err, "  host_bytes_in          18\n"), g_emu.err);
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(g_emu.err, "  host_bytes_out         18\n"), g_emu.err);
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(g_emu.err, "  ticks "), g_emu.err);
+}
+
+int main(void)
+{
+    int rc;
+    strcpy(g_dir, "/tmp/xgo-emu-test-XXXXXX");
+    if (mkdtemp(g_dir) == NULL) {
+        perror("mkdtemp");
+        return 1;
+    }
+    snprintf(g_link, sizeof g_link, "%s/ttyXGO", g_dir);
+    signal(SIGPIPE, SIG_IGN);
+
+    UNITY_BEGIN();
+    RUN_TEST(test_prints_pty_path_first_and_links_it);
+    RUN_TEST(test_spec_read_example_gets_the_spec_reply);
+    RUN_TEST(test_spec_write_example_gets_no_reply_and_takes_effect);
+    RUN_TEST(test_garbage_then_request_gets_its_reply);
+    RUN_TEST(test_control_bytes_pass_unchanged_without_host_setup);
+    RUN_TEST(test_close_and_reopen_100_times);
+    RUN_TEST(test_unread_replies_do_not_leak_into_the_next_session);
+    RUN_TEST(test_idle_cpu_stays_low);
+    RUN_TEST(test_pipelined_large_reads_all_arrive);
+    RUN_TEST(test_baud_pacing_delays_replies_by_wire_time);
+    RUN_TEST(test_without_pacing_replies_are_immediate);
+    RUN_TEST(test_sigint_exits_0_and_removes_link);
+    RUN_TEST(test_link_onto_a_regular_file_is_refused);
+    RUN_TEST(test_link_onto_a_directory_is_refused);
+    RUN_TEST(test_stale_symlink_is_replaced);
+    RUN_TEST(test_repointed_link_is_left_alone_at_exit);
+    RUN_TEST(test_bad_options_exit_2_with_one_line_and_usage);
+    RUN_TEST(test_help_and_version_exit_0);
+    RUN_TEST(test_trace_prints_one_line_per_frame);
+    RUN_TEST(test_counters_are_printed_at_exit);
+    rc = UNITY_END();
+
+    rmdir(g_dir);
+    return rc;
+}
