@@ -1,0 +1,146 @@
+/*
+ * xgo/kinematics.h - leg inverse/forward kinematics, body pose to foot
+ * positions, and the byte encodings of the foot and servo registers; all in
+ * integer arithmetic (xgo/fixed.h).
+ *
+ * Frames (spec section 3; docs/geometry.md has the drawings and the sign
+ * conventions):
+ *   machine frame  x forward, y left, z up; origin on the ground under the
+ *                  body centre in the standing pose.
+ *   body frame     the machine frame moved by the body pose: origin at the
+ *                  centre of the four hip (abduction) axes.
+ *   leg frame      one per leg: x forward, y left, z DOWN; origin at the
+ *                  thigh (hip pitch) joint with the abduction at zero, i.e.
+ *                  at (+-hip_x, +-(hip_y + abad_offset), 0) in the body frame.
+ *
+ * Joint angles (vendor servo convention, docs/geometry.md):
+ *   x3 abduction: 0 = leg plane vertical; + moves the foot outward (away
+ *                 from the body) on every leg.
+ *   x2 hip pitch: 0 = thigh pointing straight down; + swings the thigh
+ *                 backward (right-hand rotation about +y).
+ *   x1 knee:      0 = shank at (about) a right angle to the thigh, foot
+ *                 ahead of the knee; + opens (extends) the knee.
+ *
+ * Data flow for the gait: body pose + feet on the ground (machine frame) ->
+ * xgo_body_ik -> feet in leg frames -> xgo_leg_ik -> joint angles ->
+ * xgo_joints_to_bytes -> servo registers 0x50..0x5B. xgo_body_to_joints does
+ * the first three steps for all four legs.
+ *
+ * Units: lengths in int32 micrometres (_um), angles in int32 millidegrees
+ * (_mdeg). Every function accepts any input value: nothing overflows, and
+ * unreachable foot targets are expected input (reported, not asserted).
+ * Portable: no OS calls, no heap, no globals, no floating point.
+ */
+#ifndef XGO_KINEMATICS_H
+#define XGO_KINEMATICS_H
+
+#include <stdint.h>
+
+#include "xgo/fixed.h"
+#include "xgo/profile.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct xgo_vec3_s {
+    int32_t x;
+    int32_t y;
+    int32_t z;
+} xgo_vec3_t;
+
+/* Body pose in the machine frame: the body centre's position (z is the
+ * height of the hip axes above the ground) and its attitude, applied as
+ * R = Rz(yaw) * Ry(pitch) * Rx(roll), right-hand rule about the machine axes. */
+typedef struct xgo_body_pose_s {
+    int32_t x_um;
+    int32_t y_um;
+    int32_t z_um;
+    int32_t roll_mdeg;
+    int32_t pitch_mdeg;
+    int32_t yaw_mdeg;
+} xgo_body_pose_t;
+
+/* Leg IK results. */
+#define XGO_IK_REACHED 0
+#define XGO_IK_PROJECTED 1 /* target unreachable: angles reach the projection */
+
+/* Foot position in the leg frame (um) -> joint angles q_mdeg[XGO_JOINT_*].
+ *
+ * Unreachable targets (outside the link lengths or the joint limits) are
+ * projected (docs/geometry.md, "Unreachable targets"):
+ *   1. the abduction that puts the target in the leg plane is clamped to the
+ *      x3 limits and the target is projected orthogonally onto that plane
+ *      (a target closer to the abduction axis than abad_offset_um uses the
+ *      plane through its own direction);
+ *   2. inside the leg plane the target is replaced by the nearest point of
+ *      the region the knee and hip limits allow.
+ * The result is always within the profile's joint limits. Targets farther
+ * than about 1 m are first scaled toward the thigh joint (same direction).
+ * Returns XGO_IK_REACHED or XGO_IK_PROJECTED. */
+int xgo_leg_ik(const xgo_profile_t *p, xgo_leg_t leg, const xgo_vec3_t *foot_um,
+               int32_t q_mdeg[XGO_JOINT_COUNT]);
+
+/* Joint angles -> foot position in the leg frame (um). Any angles (limits
+ * are not applied). */
+void xgo_leg_fk(const xgo_profile_t *p, xgo_leg_t leg, const int32_t q_mdeg[XGO_JOINT_COUNT],
+                xgo_vec3_t *foot_um);
+
+/* Body IK: feet in the machine frame (on the ground or anywhere) and the
+ * body pose -> each foot in its leg frame. Coordinates saturate at +-2147 m. */
+void xgo_body_ik(const xgo_profile_t *p, const xgo_body_pose_t *pose,
+                 const xgo_vec3_t feet_machine_um[XGO_LEG_COUNT],
+                 xgo_vec3_t feet_leg_um[XGO_LEG_COUNT]);
+
+/* Body IK then leg IK for all four legs. Returns a bit mask of the legs
+ * whose target was projected (bit n = leg index n); 0 when all reached. */
+unsigned xgo_body_to_joints(const xgo_profile_t *p, const xgo_body_pose_t *pose,
+                            const xgo_vec3_t feet_machine_um[XGO_LEG_COUNT],
+                            int32_t q_mdeg[XGO_LEG_COUNT][XGO_JOINT_COUNT]);
+
+/* The nominal stance: each foot on the ground right under its thigh joint,
+ * (+-hip_x, +-(hip_y + abad_offset), 0) in the machine frame. */
+void xgo_stance_feet(const xgo_profile_t *p, xgo_vec3_t feet_machine_um[XGO_LEG_COUNT]);
+
+/* Standing pose: no shift, no rotation, z = stand_height_um. */
+void xgo_body_pose_stand(const xgo_profile_t *p, xgo_body_pose_t *pose);
+
+/* ------------------------------------------------------------ byte codes
+ * The vendor library's linear map of a range [lo, hi] onto 0..255:
+ *   encode: byte = floor(255 * (v - lo) / (hi - lo)), clamped to 0..255
+ *           (the library's int(255 / (hi - lo) * (v - lo)), computed
+ *           exactly; the middle of a symmetric range gives 0x7F);
+ *   decode: v = lo + b * (hi - lo) / 255, rounded up to the next unit
+ *           (error < 1 mdeg or 1 um; makes encode(decode(b)) == b).
+ * No dead band here (0x7F and 0x80 decode to different values); that is the
+ * board's job. */
+uint8_t xgo_range_to_byte(const xgo_range_t *r, int32_t v);
+int32_t xgo_byte_to_range(const xgo_range_t *r, uint8_t b);
+
+/* Servo registers: joint angle (mdeg) <-> byte, by joint index. */
+uint8_t xgo_joint_to_byte(const xgo_profile_t *p, xgo_joint_t joint, int32_t mdeg);
+int32_t xgo_byte_to_joint(const xgo_profile_t *p, xgo_joint_t joint, uint8_t b);
+
+/* Foot registers: leg-frame coordinate (um) <-> byte, by axis. */
+uint8_t xgo_foot_to_byte(const xgo_profile_t *p, xgo_axis_t axis, int32_t um);
+int32_t xgo_byte_to_foot(const xgo_profile_t *p, xgo_axis_t axis, uint8_t b);
+
+/* All twelve, in register order (out[0] is 0x50 / 0x40, out[11] is 0x5B / 0x4B). */
+void xgo_joints_to_bytes(const xgo_profile_t *p, const int32_t q_mdeg[XGO_LEG_COUNT][XGO_JOINT_COUNT],
+                         uint8_t out[XGO_LEG_COUNT * XGO_JOINT_COUNT]);
+void xgo_bytes_to_joints(const xgo_profile_t *p, const uint8_t in[XGO_LEG_COUNT * XGO_JOINT_COUNT],
+                         int32_t q_mdeg[XGO_LEG_COUNT][XGO_JOINT_COUNT]);
+void xgo_feet_to_bytes(const xgo_profile_t *p, const xgo_vec3_t feet_leg_um[XGO_LEG_COUNT],
+                       uint8_t out[XGO_LEG_COUNT * XGO_AXIS_COUNT]);
+void xgo_bytes_to_feet(const xgo_profile_t *p, const uint8_t in[XGO_LEG_COUNT * XGO_AXIS_COUNT],
+                       xgo_vec3_t feet_leg_um[XGO_LEG_COUNT]);
+
+/* Body registers 0x33..0x38 (x, y, z shift, roll, pitch, yaw) <-> pose. */
+void xgo_body_pose_to_bytes(const xgo_profile_t *p, const xgo_body_pose_t *pose, uint8_t out[6]);
+void xgo_bytes_to_body_pose(const xgo_profile_t *p, const uint8_t in[6], xgo_body_pose_t *pose);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* XGO_KINEMATICS_H */

@@ -1,0 +1,111 @@
+/*
+ * xgo/profile.h - the robot models the board can drive (Mini, Lite) as data,
+ * and the one place where legs, joints, servos and registers are numbered.
+ *
+ * A profile holds the link geometry the kinematics needs, the joint limits,
+ * and the vendor library's byte ranges for the body-pose (0x33..0x38), foot
+ * (0x40..0x4B) and servo (0x50..0x5B) registers. Every number and its source
+ * is listed in docs/geometry.md.
+ *
+ * Numbering (vendor library, xgo_ros joints.yaml, the spec's register table):
+ *
+ *   leg index  leg no.  position      servos      foot regs    servo regs
+ *   0 (LF)     1        left  front   11 12 13    0x40..0x42   0x50..0x52
+ *   1 (RF)     2        right front   21 22 23    0x43..0x45   0x53..0x55
+ *   2 (RH)     3        right hind    31 32 33    0x46..0x48   0x56..0x58
+ *   3 (LH)     4        left  hind    41 42 43    0x49..0x4B   0x59..0x5B
+ *
+ *   joint index  servo  vendor name  joint
+ *   0            x1     "lower"      knee
+ *   1            x2     "middle"     hip pitch (thigh)
+ *   2            x3     "upper"      hip roll (abduction)
+ *
+ * Units: lengths in micrometres (_um), angles in millidegrees (_mdeg).
+ * Portable: no OS calls, no heap, no globals (profiles are const data), no
+ * floating point.
+ */
+#ifndef XGO_PROFILE_H
+#define XGO_PROFILE_H
+
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum xgo_leg_e {
+    XGO_LEG_LF = 0, /* leg 1, left front  */
+    XGO_LEG_RF = 1, /* leg 2, right front */
+    XGO_LEG_RH = 2, /* leg 3, right hind  */
+    XGO_LEG_LH = 3, /* leg 4, left hind   */
+    XGO_LEG_COUNT = 4
+} xgo_leg_t;
+
+typedef enum xgo_joint_e {
+    XGO_JOINT_KNEE = 0, /* servo x1 */
+    XGO_JOINT_HIP = 1,  /* servo x2, hip pitch */
+    XGO_JOINT_ABAD = 2, /* servo x3, hip roll (abduction) */
+    XGO_JOINT_COUNT = 3
+} xgo_joint_t;
+
+typedef enum xgo_axis_e { XGO_AXIS_X = 0, XGO_AXIS_Y = 1, XGO_AXIS_Z = 2, XGO_AXIS_COUNT = 3 } xgo_axis_t;
+
+/* Register of a foot coordinate (leg frame) and of a servo position. */
+#define XGO_FOOT_REG(leg, axis) (0x40u + 3u * (unsigned)(leg) + (unsigned)(axis))
+#define XGO_SERVO_REG(leg, joint) (0x50u + 3u * (unsigned)(leg) + (unsigned)(joint))
+/* Servo id as the vendor names it: 11..43. */
+#define XGO_SERVO_ID(leg, joint) (10u * ((unsigned)(leg) + 1u) + (unsigned)(joint) + 1u)
+
+/* +1 for the front legs, -1 for the hind legs. */
+int xgo_leg_side_x(xgo_leg_t leg);
+/* +1 for the left legs, -1 for the right legs. */
+int xgo_leg_side_y(xgo_leg_t leg);
+
+/* An inclusive value range [lo, hi], lo < hi, in the unit of its field. */
+typedef struct xgo_range_s {
+    int32_t lo;
+    int32_t hi;
+} xgo_range_t;
+
+typedef struct xgo_profile_s {
+    const char *name; /* "mini", "lite" */
+
+    /* Leg geometry (docs/geometry.md, "Leg model"). */
+    int32_t thigh_um;        /* L1: hip pitch axis to knee axis */
+    int32_t shank_um;        /* L2: knee axis to foot contact point */
+    int32_t knee_offset_mdeg; /* angle of the shank line past the servo's
+                                 90-degree mark at x1 = 0 (foot pad offset) */
+    int32_t abad_offset_um;  /* d: abduction axis to the leg plane */
+
+    /* Body: abduction axes at (+-hip_x, +-hip_y, 0) from the body centre. */
+    int32_t hip_x_um;
+    int32_t hip_y_um;
+    int32_t length_um;       /* overall outline (informational) */
+    int32_t width_um;
+    int32_t stand_height_um; /* hip axes above the ground when standing */
+
+    /* Joint limits = the byte range of the servo registers, by joint index. */
+    xgo_range_t joint_mdeg[XGO_JOINT_COUNT];
+    /* Foot registers 0x40..: x, y, z in the leg frame. */
+    xgo_range_t foot_um[XGO_AXIS_COUNT];
+    /* Body registers 0x33..0x35 (translation; z is the height) and
+     * 0x36..0x38 (roll, pitch, yaw). */
+    xgo_range_t body_um[XGO_AXIS_COUNT];
+    xgo_range_t body_mdeg[XGO_AXIS_COUNT];
+} xgo_profile_t;
+
+#define XGO_PROFILE_MINI 0u /* same codes as register 0x02 and xgo_model_t */
+#define XGO_PROFILE_LITE 1u
+
+const xgo_profile_t *xgo_profile_mini(void);
+const xgo_profile_t *xgo_profile_lite(void);
+
+/* Profile for a model code (0 Mini, 1 Lite); unknown codes give the Mini,
+ * the default. Never NULL. */
+const xgo_profile_t *xgo_profile_get(unsigned model);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* XGO_PROFILE_H */

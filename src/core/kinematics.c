@@ -1,0 +1,532 @@
+/*
+ * kinematics.c - leg IK/FK, body IK and register byte codes in integer
+ * arithmetic. Geometry, frames and sign conventions: docs/geometry.md.
+ *
+ * Internal units: angles as binary angles (xgo_bam_t, signed view for
+ * limits), lengths in the leg plane in 1/16 um ("q4") so square roots keep
+ * sub-micrometre resolution; squares and products are int64.
+ *
+ * Leg model (one leg, leg frame, w = outward lateral coordinate = side * y):
+ *   abduction axis: parallel to x through (w = -d, z = 0); the leg plane is
+ *   at distance d from it and turns by phi (x3) about it;
+ *   in the leg plane (x forward, h "down" along the plane):
+ *     knee = L1 * u(t2),  foot = knee + L2 * u(t2 + g - 90deg),
+ *     u(a) = (-sin a, cos a), t2 = x2, g = x1 + knee_offset;
+ *   back to the leg frame: w + d = d cos phi + h sin phi,
+ *                          z     = -d sin phi + h cos phi.
+ */
+#include "xgo/kinematics.h"
+
+#define Q4_SHIFT 4             /* planar lengths in 1/16 um */
+#define Q4_ONE 16              /* 2^Q4_SHIFT: scale by multiplying (<< of a negative value is undefined) */
+#define FAR_LIMIT_UM (1 << 20) /* targets beyond ~1 m are scaled down */
+
+/* ------------------------------------------------------------ helpers */
+
+static int64_t round_shift(int64_t v, unsigned n)
+{
+    return (v + ((int64_t)1 << (n - 1u))) >> n;
+}
+
+static int32_t clamp_i32(int32_t v, int32_t lo, int32_t hi)
+{
+    return v < lo ? lo : (v > hi ? hi : v);
+}
+
+/* Signed binary angle of a limit given in mdeg (limits are within +-180). */
+static int32_t limit_bam(int32_t mdeg)
+{
+    return xgo_bam_signed(xgo_mdeg_to_bam(mdeg));
+}
+
+static int bam_in(xgo_bam_t a, int32_t lo, int32_t hi)
+{
+    int32_t s = xgo_bam_signed(a);
+    return s >= lo && s <= hi;
+}
+
+/* Clamp angle a into the arc that starts at lo and runs counter-clockwise
+ * over width (< one turn): the point of the arc nearest to a on the circle
+ * (the distance to a circle point grows with the angular distance). */
+static xgo_bam_t clamp_arc(xgo_bam_t a, xgo_bam_t lo, uint32_t width)
+{
+    uint32_t mid = lo + width / 2u;
+    int32_t half = (int32_t)(width / 2u);
+    int32_t off = xgo_bam_signed(a - mid);
+    if (off > half) {
+        return lo + width;
+    }
+    if (off < -half) {
+        return lo;
+    }
+    return a;
+}
+
+static uint32_t isqrt64_round(uint64_t v)
+{
+    uint32_t r = xgo_isqrt64(v);
+    if (v - (uint64_t)r * r > r && r != 0xFFFFFFFFu) {
+        ++r;
+    }
+    return r;
+}
+
+static unsigned bit_length64(uint64_t v)
+{
+    unsigned n = 0;
+    while (v != 0u) {
+        v >>= 1;
+        ++n;
+    }
+    return n;
+}
+
+/* ------------------------------------------------------------ planar IK */
+
+typedef struct planar_s {
+    int64_t l1, l2;     /* q4 */
+    int32_t g_lo, g_hi; /* geometric knee angle limits, signed BAM */
+    int32_t t_lo, t_hi; /* hip pitch limits, signed BAM */
+} planar_t;
+
+typedef struct candidate_s {
+    int64_t dist2;
+    xgo_bam_t g, t2;
+} candidate_t;
+
+/* u-angle of a plane vector: u(a) = (-sin a, cos a) points along (x, h). */
+static xgo_bam_t u_angle64(int64_t x, int64_t h)
+{
+    return xgo_atan2_64(-x, h);
+}
+
+static void consider(candidate_t *best, int64_t px, int64_t ph, int64_t x, int64_t h,
+                     xgo_bam_t g, xgo_bam_t t2)
+{
+    int64_t dx = px - x, dh = ph - h; /* |d| < 2^27: squares fit */
+    int64_t d2 = dx * dx + dh * dh;
+    if (d2 < best->dist2) {
+        best->dist2 = d2;
+        best->g = g;
+        best->t2 = t2;
+    }
+}
+
+/* Nearest point of the reachable region to (x, h): the region is the image
+ * of the limit box, so its boundary is four arcs (g at a limit: circles
+ * about the hip; t2 at a limit: circles about the knee). */
+static void planar_project(const planar_t *pl, int64_t x, int64_t h, xgo_bam_t *g, xgo_bam_t *t2)
+{
+    candidate_t best;
+    int side;
+    best.dist2 = INT64_MAX;
+    best.g = (uint32_t)pl->g_lo;
+    best.t2 = (uint32_t)pl->t_lo;
+    for (side = 0; side < 2; ++side) {
+        /* g fixed at a limit: foot on a circle about the hip */
+        int32_t gl = side ? pl->g_hi : pl->g_lo;
+        xgo_q30_t sg, cg, sp, cp;
+        int64_t fx, fh, r;
+        xgo_bam_t a, psi;
+        xgo_sincos((uint32_t)gl, &sg, &cg);
+        fx = round_shift(pl->l2 * cg, 30);           /* foot in the thigh frame */
+        fh = pl->l1 + round_shift(pl->l2 * sg, 30);
+        r = (int64_t)isqrt64_round((uint64_t)(fx * fx + fh * fh));
+        a = u_angle64(fx, fh);                        /* foot direction past the thigh */
+        psi = clamp_arc(u_angle64(x, h), (uint32_t)pl->t_lo + a,
+                        (uint32_t)pl->t_hi - (uint32_t)pl->t_lo);
+        xgo_sincos(psi, &sp, &cp);
+        consider(&best, -round_shift(r * sp, 30), round_shift(r * cp, 30), x, h, (uint32_t)gl,
+                 psi - a);
+    }
+    for (side = 0; side < 2; ++side) {
+        /* t2 fixed at a limit: foot on a circle about the knee */
+        int32_t tl = side ? pl->t_hi : pl->t_lo;
+        xgo_q30_t st, ct, sb, cb;
+        int64_t kx, kh;
+        xgo_bam_t b, b_lo;
+        xgo_sincos((uint32_t)tl, &st, &ct);
+        kx = -round_shift(pl->l1 * st, 30);
+        kh = round_shift(pl->l1 * ct, 30);
+        /* shank u-angle b = t2 + g - 90deg, g within its limits */
+        b_lo = (uint32_t)tl + (uint32_t)pl->g_lo - XGO_BAM_90;
+        b = clamp_arc(u_angle64(x - kx, h - kh), b_lo, (uint32_t)pl->g_hi - (uint32_t)pl->g_lo);
+        xgo_sincos(b, &sb, &cb);
+        consider(&best, kx - round_shift(pl->l2 * sb, 30), kh + round_shift(pl->l2 * cb, 30), x, h,
+                 b - (uint32_t)tl + XGO_BAM_90, (uint32_t)tl);
+    }
+    *g = best.g;
+    *t2 = best.t2;
+}
+
+/* In-plane IK for (x, h) in q4. Returns 1 if the target had to be projected. */
+static int planar_ik(const planar_t *pl, int64_t x, int64_t h, xgo_bam_t *g_out, xgo_bam_t *t2_out)
+{
+    int64_t r2 = x * x + h * h;
+    int64_t n = r2 - pl->l1 * pl->l1 - pl->l2 * pl->l2;
+    int64_t d = 2 * pl->l1 * pl->l2;
+    unsigned k;
+    int64_t dn, nn;
+    uint32_t cn;
+    xgo_bam_t g, t2;
+    if (n > d || n < -d) {
+        planar_project(pl, x, h, g_out, t2_out);
+        return 1;
+    }
+    /* sin g = n / d, cos g = sqrt((d - n)(d + n)) / d; scale n and d to 30
+     * bits so the product fits 64 bits (relative precision 2^-30). */
+    k = bit_length64((uint64_t)d);
+    k = k > 30u ? k - 30u : 0u;
+    dn = d >> k;
+    nn = n >> k;
+    if (nn > dn) {
+        nn = dn;
+    }
+    if (nn < -dn) {
+        nn = -dn;
+    }
+    cn = isqrt64_round((uint64_t)(dn - nn) * (uint64_t)(dn + nn));
+    g = xgo_atan2((int32_t)nn, (int32_t)cn);
+    /* t2 = u-angle of the foot minus the foot's angle past the thigh,
+     * which is the u-angle of (L2 cos g, L1 + L2 sin g) (scaled by dn). */
+    t2 = u_angle64(x, h) - u_angle64(pl->l2 * (int64_t)cn, pl->l1 * dn + pl->l2 * nn);
+    if (!bam_in(g, pl->g_lo, pl->g_hi) || !bam_in(t2, pl->t_lo, pl->t_hi)) {
+        planar_project(pl, x, h, g_out, t2_out);
+        return 1;
+    }
+    *g_out = g;
+    *t2_out = t2;
+    return 0;
+}
+
+/* ------------------------------------------------------------ leg IK / FK */
+
+/* Foot position (leg frame, um) of binary joint angles; g includes the knee
+ * offset. */
+static void fk_bam(const xgo_profile_t *p, int side_y, xgo_bam_t phi, xgo_bam_t g, xgo_bam_t t2,
+                   xgo_vec3_t *foot_um)
+{
+    xgo_q30_t s2, c2, s12, c12, sp, cp;
+    int64_t l1 = p->thigh_um, l2 = p->shank_um, d = p->abad_offset_um;
+    int64_t x30, h4, wp34, z34;
+    xgo_sincos(t2, &s2, &c2);
+    xgo_sincos(t2 + g, &s12, &c12);
+    xgo_sincos(phi, &sp, &cp);
+    /* in the leg plane: x = -L1 sin t2 + L2 cos(t2 + g), h = L1 cos t2 + L2 sin(t2 + g) */
+    x30 = -l1 * s2 + l2 * c12;                           /* um * 2^30, < 2^49 */
+    h4 = round_shift(l1 * c2 + l2 * s12, 30 - Q4_SHIFT); /* q4 */
+    /* about the abduction axis, in um * 2^34 */
+    wp34 = (d * Q4_ONE) * cp + h4 * sp;
+    z34 = -(d * Q4_ONE) * sp + h4 * cp;
+    foot_um->x = (int32_t)round_shift(x30, 30);
+    foot_um->y = (int32_t)(side_y * (round_shift(wp34, 34) - d));
+    foot_um->z = (int32_t)round_shift(z34, 34);
+}
+
+typedef struct leg_solution_s {
+    xgo_bam_t phi, g, t2;
+    int projected;
+} leg_solution_t;
+
+/* One branch of the abduction solution: the foot at h = branch * |h| in the
+ * leg plane (branch +1: at or below the thigh joint, -1: above it). */
+static void solve_branch(const planar_t *pl, int32_t a_lo, int32_t a_hi, int64_t xq, int64_t wp,
+                         int32_t z, int32_t d, int64_t h_abs, int branch, leg_solution_t *s)
+{
+    int64_t h = branch > 0 ? h_abs : -h_abs;
+    s->projected = 0;
+    /* the target's angle about the axis minus that of the plane point (d, h) */
+    s->phi = xgo_atan2((int32_t)wp, z) - xgo_atan2_64((int64_t)d * Q4_ONE, h);
+    if (!bam_in(s->phi, a_lo, a_hi)) {
+        /* clamp, then project the target onto that leg plane */
+        xgo_q30_t sp, cp;
+        s->phi = (uint32_t)(xgo_bam_signed(s->phi) < a_lo ? a_lo : a_hi);
+        xgo_sincos(s->phi, &sp, &cp);
+        h = round_shift(wp * sp + (int64_t)z * cp, 30 - Q4_SHIFT);
+        s->projected = 1;
+    }
+    s->projected |= planar_ik(pl, xq, h, &s->g, &s->t2);
+}
+
+static int64_t dist2_um(const xgo_vec3_t *a, int32_t x, int32_t y, int32_t z)
+{
+    int64_t dx = (int64_t)a->x - x, dy = (int64_t)a->y - y, dz = (int64_t)a->z - z;
+    return dx * dx + dy * dy + dz * dz; /* all within ~2^21: fits */
+}
+
+int xgo_leg_ik(const xgo_profile_t *p, xgo_leg_t leg, const xgo_vec3_t *foot_um,
+               int32_t q_mdeg[XGO_JOINT_COUNT])
+{
+    planar_t pl;
+    int32_t x = foot_um->x, y = foot_um->y, z = foot_um->z;
+    int32_t d = p->abad_offset_um;
+    int32_t a_lo = limit_bam(p->joint_mdeg[XGO_JOINT_ABAD].lo);
+    int32_t a_hi = limit_bam(p->joint_mdeg[XGO_JOINT_ABAD].hi);
+    xgo_bam_t knee_off = xgo_mdeg_to_bam(p->knee_offset_mdeg);
+    int side = xgo_leg_side_y(leg);
+    int64_t wp, h2, h_abs, xq;
+    leg_solution_t below, above;
+    const leg_solution_t *sol = &below;
+    int inside_axis_cylinder;
+
+    /* Far targets: halve all three until within ~1 m (direction kept). */
+    while (x > FAR_LIMIT_UM || x < -FAR_LIMIT_UM || y > FAR_LIMIT_UM || y < -FAR_LIMIT_UM ||
+           z > FAR_LIMIT_UM || z < -FAR_LIMIT_UM) {
+        x /= 2;
+        y /= 2;
+        z /= 2;
+    }
+
+    pl.l1 = (int64_t)p->thigh_um * Q4_ONE;
+    pl.l2 = (int64_t)p->shank_um * Q4_ONE;
+    pl.g_lo = xgo_bam_signed(xgo_mdeg_to_bam(p->joint_mdeg[XGO_JOINT_KNEE].lo) + knee_off);
+    pl.g_hi = xgo_bam_signed(xgo_mdeg_to_bam(p->joint_mdeg[XGO_JOINT_KNEE].hi) + knee_off);
+    pl.t_lo = limit_bam(p->joint_mdeg[XGO_JOINT_HIP].lo);
+    pl.t_hi = limit_bam(p->joint_mdeg[XGO_JOINT_HIP].hi);
+
+    /* Across the abduction axis: wp is the target's outward distance from
+     * the axis, h its distance along the leg plane (Pythagoras with d). A
+     * target closer to the axis than d is in no leg plane (h = 0 then). */
+    wp = (side > 0 ? (int64_t)y : -(int64_t)y) + d; /* |wp| <= 2^21 */
+    h2 = wp * wp + (int64_t)z * z - (int64_t)d * d;
+    inside_axis_cylinder = h2 < 0;
+    h_abs = h2 > 0 ? (int64_t)isqrt64_round((uint64_t)h2 << (2 * Q4_SHIFT)) : 0; /* q4 */
+    xq = (int64_t)x * Q4_ONE;
+
+    /* Two solutions: foot below the thigh joint's level in the leg plane
+     * (the normal one), or above it. Take the first that reaches the target
+     * within every limit; if neither does, the one landing nearer. */
+    solve_branch(&pl, a_lo, a_hi, xq, wp, z, d, h_abs, 1, &below);
+    if (below.projected && h_abs > 0) {
+        solve_branch(&pl, a_lo, a_hi, xq, wp, z, d, h_abs, -1, &above);
+        if (!above.projected) {
+            sol = &above;
+        } else {
+            xgo_vec3_t fb, fa;
+            fk_bam(p, side, below.phi, below.g, below.t2, &fb);
+            fk_bam(p, side, above.phi, above.g, above.t2, &fa);
+            if (dist2_um(&fa, x, y, z) < dist2_um(&fb, x, y, z)) {
+                sol = &above;
+            }
+        }
+    }
+
+    q_mdeg[XGO_JOINT_KNEE] = clamp_i32(xgo_bam_to_mdeg(sol->g - knee_off), p->joint_mdeg[XGO_JOINT_KNEE].lo,
+                                       p->joint_mdeg[XGO_JOINT_KNEE].hi);
+    q_mdeg[XGO_JOINT_HIP] = clamp_i32(xgo_bam_to_mdeg(sol->t2), p->joint_mdeg[XGO_JOINT_HIP].lo,
+                                      p->joint_mdeg[XGO_JOINT_HIP].hi);
+    q_mdeg[XGO_JOINT_ABAD] = clamp_i32(xgo_bam_to_mdeg(sol->phi), p->joint_mdeg[XGO_JOINT_ABAD].lo,
+                                       p->joint_mdeg[XGO_JOINT_ABAD].hi);
+    return (sol->projected || inside_axis_cylinder) ? XGO_IK_PROJECTED : XGO_IK_REACHED;
+}
+
+void xgo_leg_fk(const xgo_profile_t *p, xgo_leg_t leg, const int32_t q_mdeg[XGO_JOINT_COUNT],
+                xgo_vec3_t *foot_um)
+{
+    fk_bam(p, xgo_leg_side_y(leg), xgo_mdeg_to_bam(q_mdeg[XGO_JOINT_ABAD]),
+           xgo_mdeg_to_bam(q_mdeg[XGO_JOINT_KNEE]) + xgo_mdeg_to_bam(p->knee_offset_mdeg),
+           xgo_mdeg_to_bam(q_mdeg[XGO_JOINT_HIP]), foot_um);
+}
+
+/* ------------------------------------------------------------ body IK */
+
+static int32_t mul30(int32_t a, int32_t b)
+{
+    return (int32_t)round_shift((int64_t)a * b, 30);
+}
+
+/* a*b + c*d in Q30, clamped to [-1, 1] (rounding may push |x| past 1). */
+static int32_t dot30(int32_t a, int32_t b, int32_t c, int32_t d)
+{
+    int64_t v = round_shift((int64_t)a * b + (int64_t)c * d, 30);
+    return v > XGO_Q30_ONE ? XGO_Q30_ONE : (v < -XGO_Q30_ONE ? -XGO_Q30_ONE : (int32_t)v);
+}
+
+void xgo_body_ik(const xgo_profile_t *p, const xgo_body_pose_t *pose,
+                 const xgo_vec3_t feet_machine_um[XGO_LEG_COUNT],
+                 xgo_vec3_t feet_leg_um[XGO_LEG_COUNT])
+{
+    xgo_q30_t sr, cr, sp, cp, sy, cy;
+    xgo_q30_t m[3][3]; /* R = Rz(yaw) Ry(pitch) Rx(roll), Q30 */
+    int leg;
+    xgo_sincos(xgo_mdeg_to_bam(pose->roll_mdeg), &sr, &cr);
+    xgo_sincos(xgo_mdeg_to_bam(pose->pitch_mdeg), &sp, &cp);
+    xgo_sincos(xgo_mdeg_to_bam(pose->yaw_mdeg), &sy, &cy);
+    {
+        int32_t cysp = mul30(cy, sp), sysp = mul30(sy, sp);
+        m[0][0] = mul30(cy, cp);
+        m[0][1] = dot30(cysp, sr, -sy, cr);
+        m[0][2] = dot30(cysp, cr, sy, sr);
+        m[1][0] = mul30(sy, cp);
+        m[1][1] = dot30(sysp, sr, cy, cr);
+        m[1][2] = dot30(sysp, cr, -cy, sr);
+        m[2][0] = -sp;
+        m[2][1] = mul30(cp, sr);
+        m[2][2] = mul30(cp, cr);
+    }
+    for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
+        /* foot relative to the body centre, in machine axes */
+        int64_t vx = xgo_sat_sub(feet_machine_um[leg].x, pose->x_um);
+        int64_t vy = xgo_sat_sub(feet_machine_um[leg].y, pose->y_um);
+        int64_t vz = xgo_sat_sub(feet_machine_um[leg].z, pose->z_um);
+        /* into body axes: R^T v; each term < 2^61, the sum < 2^63 */
+        int32_t bx = xgo_sat32(round_shift(m[0][0] * vx + m[1][0] * vy + m[2][0] * vz, 30));
+        int32_t by = xgo_sat32(round_shift(m[0][1] * vx + m[1][1] * vy + m[2][1] * vz, 30));
+        int32_t bz = xgo_sat32(round_shift(m[0][2] * vx + m[1][2] * vy + m[2][2] * vz, 30));
+        /* into the leg frame: origin at the thigh joint, z down */
+        int32_t ox = xgo_leg_side_x((xgo_leg_t)leg) * p->hip_x_um;
+        int32_t oy = xgo_leg_side_y((xgo_leg_t)leg) * (p->hip_y_um + p->abad_offset_um);
+        feet_leg_um[leg].x = xgo_sat_sub(bx, ox);
+        feet_leg_um[leg].y = xgo_sat_sub(by, oy);
+        feet_leg_um[leg].z = xgo_sat_neg(bz);
+    }
+}
+
+unsigned xgo_body_to_joints(const xgo_profile_t *p, const xgo_body_pose_t *pose,
+                            const xgo_vec3_t feet_machine_um[XGO_LEG_COUNT],
+                            int32_t q_mdeg[XGO_LEG_COUNT][XGO_JOINT_COUNT])
+{
+    xgo_vec3_t feet_leg[XGO_LEG_COUNT];
+    unsigned mask = 0;
+    int leg;
+    xgo_body_ik(p, pose, feet_machine_um, feet_leg);
+    for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
+        if (xgo_leg_ik(p, (xgo_leg_t)leg, &feet_leg[leg], q_mdeg[leg]) != XGO_IK_REACHED) {
+            mask |= 1u << leg;
+        }
+    }
+    return mask;
+}
+
+void xgo_stance_feet(const xgo_profile_t *p, xgo_vec3_t feet_machine_um[XGO_LEG_COUNT])
+{
+    int leg;
+    for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
+        feet_machine_um[leg].x = xgo_leg_side_x((xgo_leg_t)leg) * p->hip_x_um;
+        feet_machine_um[leg].y = xgo_leg_side_y((xgo_leg_t)leg) * (p->hip_y_um + p->abad_offset_um);
+        feet_machine_um[leg].z = 0;
+    }
+}
+
+void xgo_body_pose_stand(const xgo_profile_t *p, xgo_body_pose_t *pose)
+{
+    pose->x_um = 0;
+    pose->y_um = 0;
+    pose->z_um = p->stand_height_um;
+    pose->roll_mdeg = 0;
+    pose->pitch_mdeg = 0;
+    pose->yaw_mdeg = 0;
+}
+
+/* ------------------------------------------------------------ byte codes */
+
+uint8_t xgo_range_to_byte(const xgo_range_t *r, int32_t v)
+{
+    int64_t span = (int64_t)r->hi - r->lo;
+    int64_t num;
+    if (span <= 0 || v <= r->lo) {
+        return 0u;
+    }
+    if (v >= r->hi) {
+        return 255u;
+    }
+    num = 255 * ((int64_t)v - r->lo); /* 0 < num < 255 * span */
+    return (uint8_t)(num / span);
+}
+
+int32_t xgo_byte_to_range(const xgo_range_t *r, uint8_t b)
+{
+    int64_t span = (int64_t)r->hi - r->lo;
+    int64_t off;
+    if (span <= 0) {
+        return r->lo;
+    }
+    /* ceil(b * span / 255): rounding up (by less than one unit) makes
+     * encode(decode(b)) == b for every byte whenever span >= 255 units. */
+    off = ((int64_t)b * span + 254) / 255; /* < 2^40 */
+    return xgo_sat32((int64_t)r->lo + off);
+}
+
+uint8_t xgo_joint_to_byte(const xgo_profile_t *p, xgo_joint_t joint, int32_t mdeg)
+{
+    return xgo_range_to_byte(&p->joint_mdeg[joint], mdeg);
+}
+
+int32_t xgo_byte_to_joint(const xgo_profile_t *p, xgo_joint_t joint, uint8_t b)
+{
+    return xgo_byte_to_range(&p->joint_mdeg[joint], b);
+}
+
+uint8_t xgo_foot_to_byte(const xgo_profile_t *p, xgo_axis_t axis, int32_t um)
+{
+    return xgo_range_to_byte(&p->foot_um[axis], um);
+}
+
+int32_t xgo_byte_to_foot(const xgo_profile_t *p, xgo_axis_t axis, uint8_t b)
+{
+    return xgo_byte_to_range(&p->foot_um[axis], b);
+}
+
+void xgo_joints_to_bytes(const xgo_profile_t *p, const int32_t q_mdeg[XGO_LEG_COUNT][XGO_JOINT_COUNT],
+                         uint8_t out[XGO_LEG_COUNT * XGO_JOINT_COUNT])
+{
+    int leg, j;
+    for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
+        for (j = 0; j < XGO_JOINT_COUNT; ++j) {
+            out[leg * XGO_JOINT_COUNT + j] = xgo_range_to_byte(&p->joint_mdeg[j], q_mdeg[leg][j]);
+        }
+    }
+}
+
+void xgo_bytes_to_joints(const xgo_profile_t *p, const uint8_t in[XGO_LEG_COUNT * XGO_JOINT_COUNT],
+                         int32_t q_mdeg[XGO_LEG_COUNT][XGO_JOINT_COUNT])
+{
+    int leg, j;
+    for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
+        for (j = 0; j < XGO_JOINT_COUNT; ++j) {
+            q_mdeg[leg][j] = xgo_byte_to_range(&p->joint_mdeg[j], in[leg * XGO_JOINT_COUNT + j]);
+        }
+    }
+}
+
+void xgo_feet_to_bytes(const xgo_profile_t *p, const xgo_vec3_t feet_leg_um[XGO_LEG_COUNT],
+                       uint8_t out[XGO_LEG_COUNT * XGO_AXIS_COUNT])
+{
+    int leg;
+    for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
+        out[leg * 3 + 0] = xgo_range_to_byte(&p->foot_um[XGO_AXIS_X], feet_leg_um[leg].x);
+        out[leg * 3 + 1] = xgo_range_to_byte(&p->foot_um[XGO_AXIS_Y], feet_leg_um[leg].y);
+        out[leg * 3 + 2] = xgo_range_to_byte(&p->foot_um[XGO_AXIS_Z], feet_leg_um[leg].z);
+    }
+}
+
+void xgo_bytes_to_feet(const xgo_profile_t *p, const uint8_t in[XGO_LEG_COUNT * XGO_AXIS_COUNT],
+                       xgo_vec3_t feet_leg_um[XGO_LEG_COUNT])
+{
+    int leg;
+    for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
+        feet_leg_um[leg].x = xgo_byte_to_range(&p->foot_um[XGO_AXIS_X], in[leg * 3 + 0]);
+        feet_leg_um[leg].y = xgo_byte_to_range(&p->foot_um[XGO_AXIS_Y], in[leg * 3 + 1]);
+        feet_leg_um[leg].z = xgo_byte_to_range(&p->foot_um[XGO_AXIS_Z], in[leg * 3 + 2]);
+    }
+}
+
+void xgo_body_pose_to_bytes(const xgo_profile_t *p, const xgo_body_pose_t *pose, uint8_t out[6])
+{
+    out[0] = xgo_range_to_byte(&p->body_um[XGO_AXIS_X], pose->x_um);
+    out[1] = xgo_range_to_byte(&p->body_um[XGO_AXIS_Y], pose->y_um);
+    out[2] = xgo_range_to_byte(&p->body_um[XGO_AXIS_Z], pose->z_um);
+    out[3] = xgo_range_to_byte(&p->body_mdeg[0], pose->roll_mdeg);
+    out[4] = xgo_range_to_byte(&p->body_mdeg[1], pose->pitch_mdeg);
+    out[5] = xgo_range_to_byte(&p->body_mdeg[2], pose->yaw_mdeg);
+}
+
+void xgo_bytes_to_body_pose(const xgo_profile_t *p, const uint8_t in[6], xgo_body_pose_t *pose)
+{
+    pose->x_um = xgo_byte_to_range(&p->body_um[XGO_AXIS_X], in[0]);
+    pose->y_um = xgo_byte_to_range(&p->body_um[XGO_AXIS_Y], in[1]);
+    pose->z_um = xgo_byte_to_range(&p->body_um[XGO_AXIS_Z], in[2]);
+    pose->roll_mdeg = xgo_byte_to_range(&p->body_mdeg[0], in[3]);
+    pose->pitch_mdeg = xgo_byte_to_range(&p->body_mdeg[1], in[4]);
+    pose->yaw_mdeg = xgo_byte_to_range(&p->body_mdeg[2], in[5]);
+}

@@ -1,0 +1,83 @@
+/*
+ * profile.c - the Mini and Lite profiles (sources of every number:
+ * docs/geometry.md) and the leg numbering helpers.
+ */
+#include "xgo/profile.h"
+
+/* Leg geometry of the Mini, from the vendor-derived mini2 URDF
+ * (sskorol/xgo_ros urdf/mini2_description.urdf):
+ *   thigh 0.0599 m (joint 11 origin), abduction offset 0.030988 m (joint 12
+ *   origin), foot at (0.001, 0.075988) m from the knee at x1 = 0, i.e. a
+ *   75.995 mm shank line 0.754 degrees past the right angle. */
+#define MINI_THIGH_UM 59900
+#define MINI_SHANK_UM 75995
+#define MINI_KNEE_OFFSET_MDEG 754
+#define MINI_ABAD_OFFSET_UM 30988
+#define MINI_HIP_X_UM 75000
+#define MINI_HIP_Y_UM 22500
+
+static const xgo_profile_t mini_profile = {
+    "mini",
+    MINI_THIGH_UM,
+    MINI_SHANK_UM,
+    MINI_KNEE_OFFSET_MDEG,
+    MINI_ABAD_OFFSET_UM,
+    MINI_HIP_X_UM,
+    MINI_HIP_Y_UM,
+    250000, /* product page: 250 x 150 x 60 mm */
+    150000,
+    97500, /* middle of the body-height register range 75..120 mm */
+    /* vendor library changePara('xgomini'): x1, x2, x3 */
+    {{-73000, 57000}, {-66000, 93000}, {-31000, 31000}},
+    /* foot x, y, z */
+    {{-35000, 35000}, {-18000, 18000}, {75000, 115000}},
+    /* body x, y, z */
+    {{-35000, 35000}, {-19500, 19500}, {75000, 120000}},
+    /* body roll, pitch, yaw */
+    {{-20000, 20000}, {-22000, 22000}, {-16000, 16000}},
+};
+
+/* No public kinematic model of the Lite exists: its link geometry is
+ * ASSUMED equal to the Mini's (docs/geometry.md); its ranges are the vendor
+ * library's Lite set. */
+static const xgo_profile_t lite_profile = {
+    "lite",
+    MINI_THIGH_UM,
+    MINI_SHANK_UM,
+    MINI_KNEE_OFFSET_MDEG,
+    MINI_ABAD_OFFSET_UM,
+    MINI_HIP_X_UM,
+    MINI_HIP_Y_UM,
+    250000,
+    150000,
+    85000, /* middle of the body-height register range 60..110 mm */
+    {{-70000, 50000}, {-70000, 90000}, {-30000, 30000}},
+    {{-25000, 25000}, {-18000, 18000}, {60000, 110000}},
+    {{-25000, 25000}, {-18000, 18000}, {60000, 110000}},
+    {{-20000, 20000}, {-10000, 10000}, {-12000, 12000}},
+};
+
+const xgo_profile_t *xgo_profile_mini(void)
+{
+    return &mini_profile;
+}
+
+const xgo_profile_t *xgo_profile_lite(void)
+{
+    return &lite_profile;
+}
+
+const xgo_profile_t *xgo_profile_get(unsigned model)
+{
+    return model == XGO_PROFILE_LITE ? &lite_profile : &mini_profile;
+}
+
+int xgo_leg_side_x(xgo_leg_t leg)
+{
+    return (leg == XGO_LEG_LF || leg == XGO_LEG_RF) ? 1 : -1;
+}
+
+int xgo_leg_side_y(xgo_leg_t leg)
+{
+    return (leg == XGO_LEG_LF || leg == XGO_LEG_LH) ? 1 : -1;
+}
