@@ -585,6 +585,20 @@ static void test_unread_replies_do_not_leak_into_the_next_session(void)
     TEST_ASSERT_EQUAL_INT(0, (int)port_silence(g_port, 50));
     read_regs(g_port, 0x30, 1, &value);
     TEST_ASSERT_EQUAL_HEX8(0x80, value);
+    close(g_port);
+
+    /* A host that writes and leaves at once: its write is still applied
+     * (the board received it), its read is not answered to the next host. */
+    g_port = port_open_like_pyserial(g_link, B115200);
+    value = 0x10;
+    write_regs(g_port, 0x30, &value, 1);
+    port_write(g_port, req, sizeof req);
+    close(g_port);
+    sleep_ms(50);
+    g_port = port_open_untouched(g_link);
+    TEST_ASSERT_EQUAL_INT(0, (int)port_silence(g_port, 50));
+    read_regs(g_port, 0x30, 1, &value);
+    TEST_ASSERT_EQUAL_HEX8(0x10, value);
     emu_stop_cleanly(SIGTERM);
 }
 
@@ -858,6 +872,47 @@ static void test_trace_prints_one_line_per_frame(void)
     TEST_ASSERT_NOT_NULL_MESSAGE(strstr(line, "rx write 0x90"), line);
 }
 
+/* --profile and --battery reach the board: firmware string and battery. */
+static void test_profile_and_battery_options_reach_the_board(void)
+{
+    uint8_t fw[10];
+    uint8_t battery;
+    emu_start_linked("--profile=lite", "--battery=42");
+    g_port = port_open_like_pyserial(g_link, B115200);
+    read_regs(g_port, 0x07, sizeof fw, fw);
+    TEST_ASSERT_EQUAL_HEX8('L', fw[0]); /* the vendor library's Lite marker */
+    read_regs(g_port, 0x01, 1, &battery);
+    TEST_ASSERT_EQUAL_INT(42, battery);
+    emu_stop_cleanly(SIGTERM);
+}
+
+/* A partial frame followed by silence is abandoned after --timeout-ms (the
+ * loop polls the board on its own, without new bytes), not before. */
+static void test_silence_timeout_follows_the_option(void)
+{
+    static const uint8_t partial[] = {0x55, 0x00, 0x09, 0x02};
+    char expect[64];
+    snprintf(expect, sizeof expect, " drop %s [55 00 09 02]",
+             xgo_drop_reason_name(XGO_DROP_TIMEOUT));
+
+    emu_start_linked("--trace", NULL); /* default: 20 ms */
+    g_port = port_open_like_pyserial(g_link, B115200);
+    port_write(g_port, partial, sizeof partial);
+    sleep_ms(150);
+    close(g_port);
+    g_port = -1;
+    emu_stop_cleanly(SIGTERM);
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(g_emu.err, expect), g_emu.err);
+    emu_reset();
+
+    emu_start_linked("--trace", "--timeout-ms=5000");
+    g_port = port_open_like_pyserial(g_link, B115200);
+    port_write(g_port, partial, sizeof partial);
+    sleep_ms(150);
+    emu_stop_cleanly(SIGTERM);
+    TEST_ASSERT_NULL_MESSAGE(strstr(g_emu.err, expect), g_emu.err);
+}
+
 static void test_counters_are_printed_at_exit(void)
 {
     uint8_t vx;
@@ -905,6 +960,8 @@ int main(void)
     RUN_TEST(test_help_and_version_exit_0);
     RUN_TEST(test_trace_prints_one_line_per_frame);
     RUN_TEST(test_counters_are_printed_at_exit);
+    RUN_TEST(test_profile_and_battery_options_reach_the_board);
+    RUN_TEST(test_silence_timeout_follows_the_option);
     rc = UNITY_END();
 
     rmdir(g_dir);

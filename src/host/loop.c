@@ -187,22 +187,6 @@ static void xgo_host_loop_host_left(xgo_host_loop_t *l)
     l->rx_wire_free_us = 0;
 }
 
-/* Is a host there? Called once per turn while we believe none is. */
-static void xgo_host_loop_probe_host(xgo_host_loop_t *l)
-{
-    struct pollfd pfd;
-    pfd.fd = l->pty->master_fd;
-    pfd.events = POLLIN;
-    pfd.revents = 0;
-    if (poll(&pfd, 1, 0) < 0) {
-        return; /* EINTR: probe again next turn */
-    }
-    if ((pfd.revents & POLLIN) != 0 || (pfd.revents & (POLLHUP | POLLERR)) == 0) {
-        l->host_gone = 0;
-        l->counters.host_attaches++;
-    }
-}
-
 static void xgo_host_loop_read(xgo_host_loop_t *l, uint64_t now_us)
 {
     ssize_t n;
@@ -231,6 +215,28 @@ static void xgo_host_loop_read(xgo_host_loop_t *l, uint64_t now_us)
     }
     if (n < 0 && errno != EAGAIN && errno != EWOULDBLOCK) {
         xgo_host_loop_host_left(l); /* EIO: the last host closed the slave */
+    }
+}
+
+/* Is a host there? Called once per turn while we believe none is. Input a
+ * departed host left behind is read here too (POLLIN with POLLHUP): it is
+ * applied, but its replies are dropped rather than handed to the next host. */
+static void xgo_host_loop_probe_host(xgo_host_loop_t *l, uint64_t now_us)
+{
+    struct pollfd pfd;
+    pfd.fd = l->pty->master_fd;
+    pfd.events = POLLIN;
+    pfd.revents = 0;
+    if (poll(&pfd, 1, 0) < 0) {
+        return; /* EINTR: probe again next turn */
+    }
+    if ((pfd.revents & (POLLHUP | POLLERR)) == 0) {
+        l->host_gone = 0;
+        l->counters.host_attaches++;
+        return;
+    }
+    if (pfd.revents & POLLIN) {
+        xgo_host_loop_read(l, now_us);
     }
 }
 
@@ -285,7 +291,7 @@ int xgo_host_loop_run(xgo_host_loop_t *l)
 
         xgo_host_loop_run_ticks(l, now);
         if (l->host_gone) {
-            xgo_host_loop_probe_host(l);
+            xgo_host_loop_probe_host(l, now);
         }
         xgo_host_loop_feed(l, now);
         if (l->in_len == 0) {

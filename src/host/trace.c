@@ -118,11 +118,14 @@ static void xgo_host_line_write_meaning(xgo_host_line_t *l, const xgo_frame_t *f
             xgo_host_line_add(l, "\"");
             continue;
         }
+        if (d == NULL) {
+            xgo_host_line_add(l, " 0x%02X=%02X(ignored, not on the Mini)", addr, f->data[i]);
+            i++;
+            continue;
+        }
         xgo_host_line_add(l, " ");
         xgo_host_line_reg(l, addr);
-        if (d == NULL) {
-            xgo_host_line_add(l, "=%02X(ignored, not on the Mini)", f->data[i]);
-        } else if (xgo_host_decode_value(addr, f->data[i], meaning, sizeof meaning)) {
+        if (xgo_host_decode_value(addr, f->data[i], meaning, sizeof meaning)) {
             xgo_host_line_add(l, "=%02X(%s)", f->data[i], meaning);
         } else {
             xgo_host_line_add(l, "=%02X", f->data[i]);
