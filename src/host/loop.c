@@ -21,6 +21,7 @@
 #include <errno.h>
 #include <poll.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "clock.h"
@@ -265,8 +266,8 @@ static void xgo_host_loop_write(xgo_host_loop_t *l, uint64_t now_us)
     }
 }
 
-/* How long poll() may sleep: until the next tick, or the next paced byte. */
-static int xgo_host_loop_timeout_ms(const xgo_host_loop_t *l, uint64_t now_us)
+/* When the loop must wake next: the next tick, or the next paced byte. */
+static uint64_t xgo_host_loop_wake_us(const xgo_host_loop_t *l)
 {
     uint64_t wake = l->next_tick_us;
     if (!l->host_gone && !l->out_blocked && l->out.len > 0) {
@@ -275,11 +276,23 @@ static int xgo_host_loop_timeout_ms(const xgo_host_loop_t *l, uint64_t now_us)
             wake = due;
         }
     }
-    if (wake <= now_us) {
-        return 0;
-    }
-    /* Round up: waking early would just loop once more for nothing. */
-    return (int)((wake - now_us + 999u) / 1000u);
+    return wake;
+}
+
+/* poll() until wake_us. Linux has ppoll() (POSIX.1-2024) with microsecond
+ * timeouts, which keeps ticks and paced bytes on time; elsewhere poll()'s
+ * millisecond timeout is rounded up, so nothing is ever early. */
+static int xgo_host_loop_wait(struct pollfd *pfd, uint64_t now_us, uint64_t wake_us)
+{
+    uint64_t wait_us = wake_us > now_us ? wake_us - now_us : 0;
+#ifdef __linux__
+    struct timespec ts;
+    ts.tv_sec = (time_t)(wait_us / 1000000u);
+    ts.tv_nsec = (long)(wait_us % 1000000u) * 1000L;
+    return ppoll(pfd, 1, &ts, NULL);
+#else
+    return poll(pfd, 1, (int)((wait_us + 999u) / 1000u));
+#endif
 }
 
 int xgo_host_loop_run(xgo_host_loop_t *l)
@@ -310,7 +323,7 @@ int xgo_host_loop_run(xgo_host_loop_t *l)
         pfd.revents = 0;
         /* A signal landing between the stop check and poll() is noticed
          * at the latest one tick later: the timeout never exceeds a tick. */
-        ready = poll(&pfd, 1, xgo_host_loop_timeout_ms(l, now));
+        ready = xgo_host_loop_wait(&pfd, now, xgo_host_loop_wake_us(l));
         if (ready < 0) {
             if (errno == EINTR) {
                 continue;
