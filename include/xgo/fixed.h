@@ -83,6 +83,10 @@ int32_t xgo_muldiv(int32_t a, int32_t b, int32_t c);
 #define xgo_q16_mul(a, b) xgo_mul_q((a), (b), 16u)
 #define xgo_q16_div(a, b) xgo_div_q((a), (b), 16u)
 
+/* Number of significant bits of v (0 for 0, 64 for 2^63 and up): what to
+ * shift by before a product must fit 64 bits. */
+unsigned xgo_bit_length(uint64_t v);
+
 /* ------------------------------------------------------------ square root */
 
 /* floor(sqrt(x)), exact for every x. */

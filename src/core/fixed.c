@@ -102,13 +102,58 @@ int32_t xgo_muldiv(int32_t a, int32_t b, int32_t c)
 
 /* ------------------------------------------------------------ square root */
 
+/* Leading zero bits of v (32 for 0). GCC and Clang have a builtin (one
+ * instruction on most cores, a small libgcc routine on Cortex-M0); the
+ * portable fallback is a 5-step binary search. */
+static unsigned clz32(uint32_t v)
+{
+#if defined(__GNUC__) && UINT32_MAX == 0xFFFFFFFFu && defined(__SIZEOF_INT__) && __SIZEOF_INT__ == 4
+    return v == 0u ? 32u : (unsigned)__builtin_clz(v);
+#else
+    unsigned n = 0;
+    if (v == 0u) {
+        return 32u;
+    }
+    if (v <= 0x0000FFFFu) {
+        n += 16u;
+        v <<= 16;
+    }
+    if (v <= 0x00FFFFFFu) {
+        n += 8u;
+        v <<= 8;
+    }
+    if (v <= 0x0FFFFFFFu) {
+        n += 4u;
+        v <<= 4;
+    }
+    if (v <= 0x3FFFFFFFu) {
+        n += 2u;
+        v <<= 2;
+    }
+    if (v <= 0x7FFFFFFFu) {
+        n += 1u;
+    }
+    return n;
+#endif
+}
+
+unsigned xgo_bit_length(uint64_t v)
+{
+    if ((v >> 32) != 0u) {
+        return 64u - clz32((uint32_t)(v >> 32));
+    }
+    return 32u - clz32((uint32_t)v);
+}
+
 uint32_t xgo_isqrt32(uint32_t x)
 {
     uint32_t r = 0;
-    uint32_t bit = 1u << 30;
-    while (bit > x) {
-        bit >>= 2;
+    uint32_t bit;
+    if (x == 0u) {
+        return 0u;
     }
+    /* start at the highest even bit position not above x's top bit */
+    bit = 1u << ((31u - clz32(x)) & ~1u);
     while (bit != 0u) {
         if (x >= r + bit) {
             x -= r + bit;
@@ -124,13 +169,14 @@ uint32_t xgo_isqrt32(uint32_t x)
 uint32_t xgo_isqrt64(uint64_t x)
 {
     uint64_t r = 0;
-    uint64_t bit = (uint64_t)1 << 62;
+    uint64_t bit;
+    unsigned top;
     if (x <= 0xFFFFFFFFu) {
         return xgo_isqrt32((uint32_t)x);
     }
-    while (bit > x) {
-        bit >>= 2;
-    }
+    /* start at the highest even bit position not above x's top bit */
+    top = 63u - clz32((uint32_t)(x >> 32));
+    bit = (uint64_t)1 << (top & ~1u);
     while (bit != 0u) {
         if (x >= r + bit) {
             x -= r + bit;
@@ -303,7 +349,7 @@ xgo_q30_t xgo_cos(xgo_bam_t a)
 
 /* ------------------------------------------------------------ atan2 */
 
-#define CORDIC_ITERS 8
+#define CORDIC_ITERS 8 /* unrolled below: CORDIC_STEP(1..8) */
 #define CORDIC_Z_SHIFT 8 /* the angle accumulates in 2^-8 BAM */
 
 /* atan(2^-i) in 2^-8 BAM units (2^40 per turn), i = 1..CORDIC_ITERS: the
@@ -317,57 +363,42 @@ static const int64_t cordic_atan_tab[CORDIC_ITERS + 1] = {
 /* 2^40 / (2 pi): radians -> 2^-8 BAM, for the final residual. */
 #define RAD_TO_Z 174992710548LL
 
-static unsigned clz32(uint32_t v)
-{
-    unsigned n = 0;
-    if (v == 0u) {
-        return 32u;
-    }
-    if (v <= 0x0000FFFFu) {
-        n += 16u;
-        v <<= 16;
-    }
-    if (v <= 0x00FFFFFFu) {
-        n += 8u;
-        v <<= 8;
-    }
-    if (v <= 0x0FFFFFFFu) {
-        n += 4u;
-        v <<= 4;
-    }
-    if (v <= 0x3FFFFFFFu) {
-        n += 2u;
-        v <<= 2;
-    }
-    if (v <= 0x7FFFFFFFu) {
-        n += 1u;
-    }
-    return n;
-}
+/* One CORDIC vectoring step: rotate (x, y) toward the x axis by
+ * atan(2^-i), accumulating the angle. Shifts are rounded so the truncation
+ * error does not drift in one direction. */
+#define CORDIC_STEP(i)                                           \
+    do {                                                         \
+        int32_t dx_ = (y + (1 << ((i) - 1))) >> (i);             \
+        int32_t dy_ = (x + (1 << ((i) - 1))) >> (i);             \
+        if (y >= 0) {                                            \
+            x += dx_;                                            \
+            y -= dy_;                                            \
+            z += cordic_atan_tab[i];                             \
+        } else {                                                 \
+            x -= dx_;                                            \
+            y += dy_;                                            \
+            z -= cordic_atan_tab[i];                             \
+        }                                                        \
+    } while (0)
 
-/* Angle of (ux, uy) with ux >= uy >= 0, ux > 0, top bit of ux at bit 29 or
- * below 2^30 after normalisation; result in BAM, 0..2^29 (0..45 degrees). */
+/* Angle of (ux, uy) with ux >= uy > 0 and ux in [2^29, 2^30); result in
+ * BAM, 0..2^29 (0..45 degrees). */
 static uint32_t cordic_octant(uint32_t ux, uint32_t uy)
 {
     int32_t x = (int32_t)ux;
     int32_t y = (int32_t)uy;
     int64_t z = 0;
-    int i;
     int64_t t, t3;
-    for (i = 1; i <= CORDIC_ITERS; ++i) {
-        int32_t half = (int32_t)1 << (i - 1);
-        int32_t dx = (y + half) >> i; /* rounded shifts: no drift */
-        int32_t dy = (x + half) >> i;
-        if (y >= 0) {
-            x += dx;
-            y -= dy;
-            z += cordic_atan_tab[i];
-        } else {
-            x -= dx;
-            y += dy;
-            z -= cordic_atan_tab[i];
-        }
-    }
+    /* i = 0 (45 degrees) is not needed: the octant reduction leaves at
+     * most 45 degrees and steps 1.. converge over 54.9 degrees. */
+    CORDIC_STEP(1);
+    CORDIC_STEP(2);
+    CORDIC_STEP(3);
+    CORDIC_STEP(4);
+    CORDIC_STEP(5);
+    CORDIC_STEP(6);
+    CORDIC_STEP(7);
+    CORDIC_STEP(8);
     /* What is left is the angle of (x, y), below atan(2^-CORDIC_ITERS):
      * finish with atan(t) = t - t^3/3 (the next term, t^5/5, is below
      * 2e-13 rad), t = y/x in Q32. |y| < 2^24 here, so y * 2^32 fits. */
@@ -456,8 +487,8 @@ xgo_bam_t xgo_atan2_64(int64_t y, int64_t x)
     unsigned k = 0;
     /* Scale both down, once and rounded, until the larger is below 2^30:
      * the ratio keeps 30 bits and atan2_mag needs no further shift. */
-    while ((m >> k) >= ((uint64_t)1 << 30)) {
-        ++k;
+    if (m >= ((uint64_t)1 << 30)) {
+        k = xgo_bit_length(m) - 30u;
     }
     if (k > 0u) {
         ux = rshift_round_u64(ux, k);

@@ -28,6 +28,12 @@ static int64_t round_shift(int64_t v, unsigned n)
     return (v + ((int64_t)1 << (n - 1u))) >> n;
 }
 
+/* Local copy of xgo_sat32 so the hot loops can inline it. */
+static int32_t sat_i32(int64_t v)
+{
+    return v > INT32_MAX ? INT32_MAX : (v < INT32_MIN ? INT32_MIN : (int32_t)v);
+}
+
 static int32_t clamp_i32(int32_t v, int32_t lo, int32_t hi)
 {
     return v < lo ? lo : (v > hi ? hi : v);
@@ -69,16 +75,6 @@ static uint32_t isqrt64_round(uint64_t v)
         ++r;
     }
     return r;
-}
-
-static unsigned bit_length64(uint64_t v)
-{
-    unsigned n = 0;
-    while (v != 0u) {
-        v >>= 1;
-        ++n;
-    }
-    return n;
 }
 
 /* ------------------------------------------------------------ planar IK */
@@ -175,7 +171,7 @@ static int planar_ik(const planar_t *pl, int64_t x, int64_t h, xgo_bam_t *g_out,
     }
     /* sin g = n / d, cos g = sqrt((d - n)(d + n)) / d; scale n and d to 30
      * bits so the product fits 64 bits (relative precision 2^-30). */
-    k = bit_length64((uint64_t)d);
+    k = xgo_bit_length((uint64_t)d);
     k = k > 30u ? k - 30u : 0u;
     dn = d >> k;
     nn = n >> k;
@@ -187,9 +183,21 @@ static int planar_ik(const planar_t *pl, int64_t x, int64_t h, xgo_bam_t *g_out,
     }
     cn = isqrt64_round((uint64_t)(dn - nn) * (uint64_t)(dn + nn));
     g = xgo_atan2((int32_t)nn, (int32_t)cn);
-    /* t2 = u-angle of the foot minus the foot's angle past the thigh,
-     * which is the u-angle of (L2 cos g, L1 + L2 sin g) (scaled by dn). */
-    t2 = u_angle64(x, h) - u_angle64(pl->l2 * (int64_t)cn, pl->l1 * dn + pl->l2 * nn);
+    /* t2 = u-angle of the foot (x, h) minus the foot's angle past the thigh,
+     * the u-angle of (a, b) = (L2 cos g, L1 + L2 sin g) (scaled by dn). As
+     * complex numbers h - ix and b - ia, the difference of their angles is
+     * the angle of (h - ix)(b + ia) = (hb + xa) + i(ha - xb): one atan2.
+     * a and b are cut to 30 bits first so the products fit 64 bits. */
+    {
+        int64_t a = pl->l2 * (int64_t)cn, b = pl->l1 * dn + pl->l2 * nn;
+        uint64_t m = (uint64_t)(a < 0 ? -a : a) | (uint64_t)(b < 0 ? -b : b);
+        unsigned kk = xgo_bit_length(m);
+        if (kk > 30u) {
+            a >>= kk - 30u;
+            b >>= kk - 30u;
+        }
+        t2 = xgo_atan2_64(h * a - x * b, h * b + x * a); /* |terms| < 2^56 */
+    }
     if (!bam_in(g, pl->g_lo, pl->g_hi) || !bam_in(t2, pl->t_lo, pl->t_hi)) {
         planar_project(pl, x, h, g_out, t2_out);
         return 1;
@@ -235,8 +243,13 @@ static void solve_branch(const planar_t *pl, int32_t a_lo, int32_t a_hi, int64_t
 {
     int64_t h = branch > 0 ? h_abs : -h_abs;
     s->projected = 0;
-    /* the target's angle about the axis minus that of the plane point (d, h) */
-    s->phi = xgo_atan2((int32_t)wp, z) - xgo_atan2_64((int64_t)d * Q4_ONE, h);
+    /* (wp, z) is the plane point (d, h) turned by phi:
+     *   wp = d cos phi + h sin phi,  z = -d sin phi + h cos phi
+     * so cos phi ~ d wp + h z and sin phi ~ h wp - d z (all in q4). */
+    {
+        int64_t d4 = (int64_t)d * Q4_ONE, wp4 = wp * Q4_ONE, z4 = (int64_t)z * Q4_ONE;
+        s->phi = xgo_atan2_64(h * wp4 - d4 * z4, d4 * wp4 + h * z4); /* |terms| < 2^51 */
+    }
     if (!bam_in(s->phi, a_lo, a_hi)) {
         /* clamp, then project the target onto that leg plane */
         xgo_q30_t sp, cp;
@@ -365,20 +378,21 @@ void xgo_body_ik(const xgo_profile_t *p, const xgo_body_pose_t *pose,
         m[2][2] = mul30(cp, cr);
     }
     for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
-        /* foot relative to the body centre, in machine axes */
-        int64_t vx = xgo_sat_sub(feet_machine_um[leg].x, pose->x_um);
-        int64_t vy = xgo_sat_sub(feet_machine_um[leg].y, pose->y_um);
-        int64_t vz = xgo_sat_sub(feet_machine_um[leg].z, pose->z_um);
+        /* foot relative to the body centre, in machine axes, saturated to
+         * int32 so the products below stay within 2^61 */
+        int64_t vx = sat_i32((int64_t)feet_machine_um[leg].x - pose->x_um);
+        int64_t vy = sat_i32((int64_t)feet_machine_um[leg].y - pose->y_um);
+        int64_t vz = sat_i32((int64_t)feet_machine_um[leg].z - pose->z_um);
         /* into body axes: R^T v; each term < 2^61, the sum < 2^63 */
-        int32_t bx = xgo_sat32(round_shift(m[0][0] * vx + m[1][0] * vy + m[2][0] * vz, 30));
-        int32_t by = xgo_sat32(round_shift(m[0][1] * vx + m[1][1] * vy + m[2][1] * vz, 30));
-        int32_t bz = xgo_sat32(round_shift(m[0][2] * vx + m[1][2] * vy + m[2][2] * vz, 30));
+        int64_t bx = round_shift(m[0][0] * vx + m[1][0] * vy + m[2][0] * vz, 30);
+        int64_t by = round_shift(m[0][1] * vx + m[1][1] * vy + m[2][1] * vz, 30);
+        int64_t bz = round_shift(m[0][2] * vx + m[1][2] * vy + m[2][2] * vz, 30);
         /* into the leg frame: origin at the thigh joint, z down */
         int32_t ox = xgo_leg_side_x((xgo_leg_t)leg) * p->hip_x_um;
         int32_t oy = xgo_leg_side_y((xgo_leg_t)leg) * (p->hip_y_um + p->abad_offset_um);
-        feet_leg_um[leg].x = xgo_sat_sub(bx, ox);
-        feet_leg_um[leg].y = xgo_sat_sub(by, oy);
-        feet_leg_um[leg].z = xgo_sat_neg(bz);
+        feet_leg_um[leg].x = sat_i32(bx - ox);
+        feet_leg_um[leg].y = sat_i32(by - oy);
+        feet_leg_um[leg].z = sat_i32(-bz);
     }
 }
 
