@@ -62,7 +62,9 @@ static xgo_host_apply_t xgo_host_apply_link(xgo_host_options_t *opts, const char
 static xgo_host_apply_t xgo_host_apply_trace(xgo_host_options_t *opts, const char *value,
                                               char *err, size_t err_size)
 {
-    (void)value, (void)err, (void)err_size;
+    (void)value;
+    (void)err;
+    (void)err_size;
     opts->trace = 1;
     return XGO_HOST_APPLY_OK;
 }
@@ -70,7 +72,9 @@ static xgo_host_apply_t xgo_host_apply_trace(xgo_host_options_t *opts, const cha
 static xgo_host_apply_t xgo_host_apply_baud_pacing(xgo_host_options_t *opts, const char *value,
                                                     char *err, size_t err_size)
 {
-    (void)value, (void)err, (void)err_size;
+    (void)value;
+    (void)err;
+    (void)err_size;
     opts->baud_pacing = 1;
     return XGO_HOST_APPLY_OK;
 }
@@ -119,14 +123,20 @@ static xgo_host_apply_t xgo_host_apply_timeout(xgo_host_options_t *opts, const c
 static xgo_host_apply_t xgo_host_apply_help(xgo_host_options_t *opts, const char *value,
                                              char *err, size_t err_size)
 {
-    (void)opts, (void)value, (void)err, (void)err_size;
+    (void)opts;
+    (void)value;
+    (void)err;
+    (void)err_size;
     return XGO_HOST_APPLY_HELP;
 }
 
 static xgo_host_apply_t xgo_host_apply_version(xgo_host_options_t *opts, const char *value,
                                                 char *err, size_t err_size)
 {
-    (void)opts, (void)value, (void)err, (void)err_size;
+    (void)opts;
+    (void)value;
+    (void)err;
+    (void)err_size;
     return XGO_HOST_APPLY_VERSION;
 }
 

@@ -3,8 +3,9 @@
  *
  * We hold only the master side. The host (pyserial, picocom, ...) opens the
  * slave by path as often as it likes. On Linux, while no host has the slave
- * open (after at least one did), the master polls as POLLHUP and reads fail
- * with EIO: that is "cable unplugged", not an error.
+ * open, the master polls as POLLHUP and reads fail with EIO (from the start
+ * too: xgo_host_pty_open briefly opens the slave to configure it): that is
+ * "cable unplugged", not an error.
  */
 #ifndef XGO_HOST_PTY_H
 #define XGO_HOST_PTY_H
