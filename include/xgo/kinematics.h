@@ -67,14 +67,18 @@ typedef struct xgo_body_pose_s {
 
 /* Foot position in the leg frame (um) -> joint angles q_mdeg[XGO_JOINT_*].
  *
- * Unreachable targets (outside the link lengths or the joint limits) are
+ * Of the two solutions (foot below or above the thigh joint's level in the
+ * leg plane) the lower one is used when it is within the limits, else the
+ * upper one. Unreachable targets (outside the link lengths, closer to the
+ * abduction axis than abad_offset_um, or needing a joint past its limit) are
  * projected (docs/geometry.md, "Unreachable targets"):
  *   1. the abduction that puts the target in the leg plane is clamped to the
  *      x3 limits and the target is projected orthogonally onto that plane
  *      (a target closer to the abduction axis than abad_offset_um uses the
  *      plane through its own direction);
  *   2. inside the leg plane the target is replaced by the nearest point of
- *      the region the knee and hip limits allow.
+ *      the region the knee and hip limits allow;
+ *   3. if both solutions need a projection, the one landing nearer wins.
  * The result is always within the profile's joint limits. Targets farther
  * than about 1 m are first scaled toward the thigh joint (same direction).
  * Returns XGO_IK_REACHED or XGO_IK_PROJECTED. */
