@@ -89,9 +89,24 @@ static uint8_t wire_read1(uint8_t addr)
     return v;
 }
 
+/* The spec's reply reads twelve 0x80: joints commanded to 0x80 in servo mode
+ * (the spec's own write format) read back exactly that once they arrive. */
+static void put_joints_at_0x80(void)
+{
+    uint8_t mid[12];
+    unsigned i;
+    memset(mid, 0x80, sizeof mid);
+    send_write(0x50, mid, sizeof mid);
+    for (i = 0; i < 2 * XGO_TICK_HZ; i++) {
+        xgo_board_tick(&board);
+    }
+    n_events = 0;
+}
+
 static void test_spec_read_example_gets_the_spec_reply(void)
 {
     uint8_t out[64];
+    put_joints_at_0x80();
     send(k_spec_read, sizeof k_spec_read);
     TEST_ASSERT_EQUAL_UINT(sizeof k_spec_reply, xgo_board_tx_pending(&board));
     TEST_ASSERT_EQUAL_UINT(sizeof k_spec_reply, xgo_board_transmit(&board, out, sizeof out));
@@ -129,6 +144,7 @@ static void test_garbage_then_request_gets_its_reply(void)
 {
     const uint8_t garbage[] = {0x00, 0xAA, 0x55, 0x13, 0x55, 0x00, 0x05, 0xFF, 0x12};
     uint8_t out[64];
+    put_joints_at_0x80();
     send(garbage, sizeof garbage);
     send(k_spec_read, sizeof k_spec_read);
     TEST_ASSERT_EQUAL_UINT(sizeof k_spec_reply, xgo_board_transmit(&board, out, sizeof out));
@@ -256,6 +272,7 @@ static void test_partial_transmit_keeps_order_across_wrap(void)
     uint8_t out[8], got[64];
     size_t i, n, got_n;
     /* 100 replies of 20 bytes drained 7 at a time: the ring wraps twice. */
+    put_joints_at_0x80();
     for (i = 0; i < 100; i++) {
         send_read(0x50, 12);
         got_n = 0;
@@ -299,6 +316,7 @@ static void test_timeout_through_the_board(void)
 {
     const uint8_t partial[] = {0x55, 0x00, 0x30, 0x00}; /* a write claiming 48 bytes */
     uint8_t out[64];
+    put_joints_at_0x80();
     xgo_board_receive(&board, partial, sizeof partial, 10);
     xgo_board_receive(&board, k_spec_read, sizeof k_spec_read, 12);
     TEST_ASSERT_EQUAL_UINT(0, xgo_board_tx_pending(&board));

@@ -21,6 +21,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "xgo/motion.h"
 #include "xgo/protocol.h"
 #include "xgo/regs.h"
 
@@ -72,6 +73,7 @@ typedef struct xgo_board_s {
     uint16_t tx_len;
     uint32_t tx_overflows;
     uint32_t ticks;
+    xgo_motion_t motion;
     xgo_trace_fn trace;
     void *trace_ctx;
 } xgo_board_t;
@@ -100,6 +102,25 @@ size_t xgo_board_tx_pending(const xgo_board_t *b);
 
 /* Advance one control period (1 / XGO_TICK_HZ s). */
 void xgo_board_tick(xgo_board_t *b);
+
+/* The ground under the robot tilts by roll/pitch (an emulator input: the
+ * IMU reads the tilt; self-stabilisation, 0x61 = 1, levels the body). */
+void xgo_board_set_ground_tilt(xgo_board_t *b, int32_t roll_mdeg, int32_t pitch_mdeg);
+
+/* The board's non-volatile data (a real board keeps it in flash): the
+ * Bluetooth name and the servo zero offsets. A host port saves it when
+ * xgo_board_nv_changes() moves and restores it at start (xgo-emu --state). */
+typedef struct xgo_board_nv_s {
+    char bt_name[XGO_BT_NAME_LEN]; /* ASCII 0x20..0x7E, NUL padded */
+    int32_t zero_offset_mdeg[XGO_SERVO_COUNT];
+} xgo_board_nv_t;
+
+void xgo_board_get_nv(const xgo_board_t *b, xgo_board_nv_t *nv);
+/* Returns 1 and applies nv, or 0 (nothing changes) when the name is empty or
+ * not printable ASCII or an offset is beyond +-360 degrees. */
+int xgo_board_set_nv(xgo_board_t *b, const xgo_board_nv_t *nv);
+/* Counts changes of the non-volatile data since init. */
+uint32_t xgo_board_nv_changes(const xgo_board_t *b);
 
 /* All counters in the order of the diagnostic block (see xgo_diag_t). */
 void xgo_board_counters(const xgo_board_t *b, uint32_t out[XGO_DIAG_COUNT]);

@@ -197,6 +197,8 @@ void xgo_regs_set(xgo_regs_t *r, uint8_t addr, uint8_t value);
 
 /* True (once) if the host wrote addr since the last call for it. */
 int xgo_regs_take_written(xgo_regs_t *r, uint8_t addr);
+/* The same without consuming the flag. */
+int xgo_regs_was_written(const xgo_regs_t *r, uint8_t addr);
 
 /* Board-side updates of computed registers. */
 void xgo_regs_set_attitude(xgo_regs_t *r, int32_t roll_mdeg, int32_t pitch_mdeg, int32_t yaw_mdeg);

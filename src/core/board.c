@@ -181,6 +181,9 @@ void xgo_board_init(xgo_board_t *b, const xgo_board_config_t *cfg)
                   b->config.model == XGO_MODEL_LITE ? k_firmware_lite : k_firmware_mini,
                   b->config.model == XGO_MODEL_LITE ? 0x01u : 0x00u);
     xgo_regs_set(&b->regs, XGO_REG_BATTERY, b->config.battery_pct);
+    xgo_motion_init(&b->motion, xgo_profile_get((unsigned)b->config.model), b->config.battery_pct,
+                    XGO_TICK_HZ);
+    xgo_motion_publish(&b->motion, &b->regs);
 }
 
 void xgo_board_set_trace(xgo_board_t *b, xgo_trace_fn fn, void *ctx)
@@ -202,12 +205,55 @@ void xgo_board_poll(xgo_board_t *b, uint32_t now_ms)
 void xgo_board_tick(xgo_board_t *b)
 {
     b->ticks++;
-    /* Auto-clear registers: the board acts on the request during the tick
-     * after the write, then the register reads 0 again. */
-    if (xgo_regs_take_written(&b->regs, XGO_REG_SET_ZERO)) {
-        xgo_regs_set(&b->regs, XGO_REG_SET_ZERO, 0);
+    xgo_motion_tick(&b->motion, &b->regs);
+}
+
+void xgo_board_set_ground_tilt(xgo_board_t *b, int32_t roll_mdeg, int32_t pitch_mdeg)
+{
+    xgo_imu_set_ground_tilt(&b->motion.imu, roll_mdeg, pitch_mdeg);
+}
+
+void xgo_board_get_nv(const xgo_board_t *b, xgo_board_nv_t *nv)
+{
+    unsigned i;
+    for (i = 0; i < XGO_BT_NAME_LEN; i++) {
+        nv->bt_name[i] = (char)xgo_regs_get(&b->regs, (uint8_t)(XGO_REG_BT_NAME + i));
     }
-    if (xgo_regs_take_written(&b->regs, XGO_REG_STAND)) {
-        xgo_regs_set(&b->regs, XGO_REG_STAND, 0);
+    memcpy(nv->zero_offset_mdeg, b->motion.servos.zero_offset_mdeg, sizeof nv->zero_offset_mdeg);
+}
+
+int xgo_board_set_nv(xgo_board_t *b, const xgo_board_nv_t *nv)
+{
+    unsigned i, len = 0;
+    for (i = 0; i < XGO_BT_NAME_LEN && nv->bt_name[i] != '\0'; i++) {
+        const unsigned char c = (unsigned char)nv->bt_name[i];
+        if (c < 0x20 || c > 0x7E) {
+            return 0;
+        }
+        len++;
     }
+    for (; i < XGO_BT_NAME_LEN; i++) {
+        if (nv->bt_name[i] != '\0') {
+            return 0; /* printable after the end of the name */
+        }
+    }
+    for (i = 0; i < XGO_SERVO_COUNT; i++) {
+        if (nv->zero_offset_mdeg[i] < -360000 || nv->zero_offset_mdeg[i] > 360000) {
+            return 0;
+        }
+    }
+    if (len == 0) {
+        return 0;
+    }
+    for (i = 0; i < XGO_BT_NAME_LEN; i++) {
+        xgo_regs_set(&b->regs, (uint8_t)(XGO_REG_BT_NAME + i), (uint8_t)nv->bt_name[i]);
+    }
+    memcpy(b->motion.servos.zero_offset_mdeg, nv->zero_offset_mdeg,
+           sizeof b->motion.servos.zero_offset_mdeg);
+    return 1;
+}
+
+uint32_t xgo_board_nv_changes(const xgo_board_t *b)
+{
+    return b->motion.nv_changes;
 }

@@ -66,6 +66,11 @@ static void mark_written(xgo_regs_t *r, uint8_t addr)
     r->written[addr >> 3] = (uint8_t)(r->written[addr >> 3] | (1u << (addr & 7u)));
 }
 
+int xgo_regs_was_written(const xgo_regs_t *r, uint8_t addr)
+{
+    return (r->written[addr >> 3] >> (addr & 7u)) & 1u;
+}
+
 int xgo_regs_take_written(xgo_regs_t *r, uint8_t addr)
 {
     const uint8_t bit = (uint8_t)(1u << (addr & 7u));

@@ -1,0 +1,178 @@
+/*
+ * xgo/gait.h - the gait generator: a body velocity command in physical units
+ * in, four foot positions per control tick out.
+ *
+ * Data flow (CHAMP's split): command -> velocity ramp -> phase generator
+ * (one master phase per gait cycle, a lift-off phase per leg) -> per-leg
+ * trajectory (stance: the foot moves with the ground; swing: lift, carry,
+ * place) -> foot positions. Body pose and leg IK are not done here: the
+ * caller (the board) adds the body pose and runs xgo_body_ik on foot_um.
+ * The module knows nothing about registers; the caller decodes 0x30..0x32,
+ * 0x09, 0x3C and 0x3D into an xgo_gait_command_t.
+ *
+ *   xgo_gait_init(&g, stance);          // standing, four feet at stance
+ *   every 1/XGO_TICK_HZ s (2 ms):
+ *     xgo_gait_tick(&g, &cmd);          // one period
+ *     use g.foot_um, g.contact, g.vx_um_s, g.vy_um_s, g.vyaw_mdeg_s
+ *
+ * Frames and units: the machine frame relative to the body, x forward,
+ * y left, z UP, z = 0 on the ground; lengths in int32 micrometres (_um),
+ * speeds in um/s, angles in millidegrees (_mdeg), yaw counter-clockwise
+ * positive seen from above.
+ *
+ * Guarantees (docs/gait.md has the derivations and the measured numbers):
+ *   - stance feet move with velocity -(v + w x p) where v, w are the values
+ *     published in vx_um_s, vy_um_s, vyaw_mdeg_s: integrating those gives
+ *     exactly the motion the stance feet describe (odometry);
+ *   - the published velocity follows the command with bounded acceleration
+ *     (XGO_GAIT_ACCEL_UM_S2, XGO_GAIT_YAW_ACCEL_MDEG_S2) and equals it after
+ *     the ramp everywhere inside the vendor ranges (no speed limiting there);
+ *   - no foot moves more than XGO_GAIT_MAX_STEP_UM in one tick, whatever the
+ *     command sequence;
+ *   - stance feet stay within +-XGO_GAIT_REACH_X_UM in x and
+ *     +-(XGO_GAIT_REACH_Y_UM + XGO_GAIT_YAW_REACH_Y_UM * |w| / 100 deg/s) in
+ *     y of their stance point, swing feet too (z from 0 to the step height);
+ *   - a zero command ends, within XGO_GAIT_STOP_TICKS_MAX ticks, with four
+ *     feet down exactly at the stance points.
+ *
+ * Input policy: every command value is expected input. Out-of-range gait
+ * types and paces select the defaults (trot, normal); speeds are clamped to
+ * twice the vendor ranges, mark-time height to XGO_GAIT_MAX_HEIGHT_UM.
+ * Pointers must not be NULL (a caller bug, not checked).
+ *
+ * Portable: C99, integer arithmetic only (xgo/fixed.h), no OS calls, no heap,
+ * no globals. Cost: one xgo_sincos per swinging leg and a few dozen 32x32
+ * multiplies per tick; 64-bit division only while a transient needs a cadence
+ * boost (see docs/gait.md).
+ */
+#ifndef XGO_GAIT_H
+#define XGO_GAIT_H
+
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Legs 1..4 = indices 0..3 (vendor numbering). */
+#define XGO_LEG_COUNT 4
+#define XGO_LEG_LF 0 /* left front */
+#define XGO_LEG_RF 1 /* right front */
+#define XGO_LEG_RH 2 /* right hind */
+#define XGO_LEG_LH 3 /* left hind */
+
+/* Register 0x09. */
+typedef enum xgo_gait_type_e {
+    XGO_GAIT_TROT = 0,
+    XGO_GAIT_WALK = 1,
+    XGO_GAIT_HIGH_WALK = 2,
+    XGO_GAIT_SLOW_TROT = 3
+} xgo_gait_type_t;
+#define XGO_GAIT_TYPE_COUNT 4
+
+/* Register 0x3D: step frequency. */
+typedef enum xgo_pace_e { XGO_PACE_NORMAL = 0, XGO_PACE_SLOW = 1, XGO_PACE_HIGH = 2 } xgo_pace_t;
+#define XGO_PACE_COUNT 3
+
+/* ------------------------------------------------------------ limits */
+
+/* Velocity ramp: produced velocity changes by at most this much per second
+ * (per component): 1 mm/s and 0.5 deg/s per tick. */
+#define XGO_GAIT_ACCEL_UM_S2 500000
+#define XGO_GAIT_YAW_ACCEL_MDEG_S2 250000
+
+/* Command clamps (twice the vendor ranges; speeds beyond the vendor ranges
+ * may be limited, see docs/gait.md). */
+#define XGO_GAIT_VX_CLAMP_UM_S 500000
+#define XGO_GAIT_VY_CLAMP_UM_S 360000
+#define XGO_GAIT_VYAW_CLAMP_MDEG_S 200000
+#define XGO_GAIT_MAX_HEIGHT_UM 35000 /* mark-time step height clamp */
+
+/* Half-stride budget the cadence is fitted to (per leg, around its stance
+ * point); y grows with the yaw rate: 16 mm + 14 mm * |w| / (100 deg/s),
+ * the yaw share saturating at 100 deg/s. */
+#define XGO_GAIT_HALF_STRIDE_X_UM 32000
+#define XGO_GAIT_HALF_STRIDE_Y_UM 16000
+#define XGO_GAIT_YAW_HALF_STRIDE_Y_UM 14000
+#define XGO_GAIT_YAW_REF_MDEG_S 100000
+
+/* The workspace box feet never leave (vendor foot ranges, Mini). */
+#define XGO_GAIT_REACH_X_UM 35000
+#define XGO_GAIT_REACH_Y_UM 18000
+#define XGO_GAIT_YAW_REACH_Y_UM 14000
+
+/* Largest displacement of any foot in one tick (3-D, any command sequence);
+ * the derivation is in docs/gait.md, the measured maximum in the tests. */
+#define XGO_GAIT_MAX_STEP_UM 5000
+
+/* Ticks from a zero command (mark time off) to standing, from any state:
+ * the ramp down (<= 0.5 s at the vendor maxima; 1 s at the clamps) plus
+ * at most one gait cycle at the slowest cadence (1.2 s), plus a switch. */
+#define XGO_GAIT_STOP_TICKS_MAX 1500u
+
+/* ------------------------------------------------------------ types */
+
+typedef struct xgo_gait_command_s {
+    int32_t vx_um_s;      /* body velocity, machine frame, x forward, um/s */
+    int32_t vy_um_s;      /* y left, um/s */
+    int32_t vyaw_mdeg_s;  /* yaw rate, counter-clockwise positive, mdeg/s */
+    int32_t mark_time_um; /* > 0: keep stepping (trot timing) with this swing
+                             height, in place when the velocity is zero; 0 = off */
+    uint8_t type;         /* xgo_gait_type_t; out of range = trot */
+    uint8_t pace;         /* xgo_pace_t; out of range = normal */
+} xgo_gait_command_t;
+
+typedef struct xgo_gait_s {
+    /* ---- outputs, valid after xgo_gait_init and after every tick ---- */
+    int32_t foot_um[XGO_LEG_COUNT][3]; /* feet relative to the body, z up */
+    uint8_t contact[XGO_LEG_COUNT];    /* 1 = stance (on the ground) */
+    int32_t vx_um_s;                   /* velocity produced this tick */
+    int32_t vy_um_s;
+    int32_t vyaw_mdeg_s;
+
+    /* ---- configuration (from xgo_gait_init) ---- */
+    int32_t stance_um[XGO_LEG_COUNT][2]; /* nominal feet x, y */
+
+    /* ---- state ---- */
+    int32_t pos_q8[XGO_LEG_COUNT][2];  /* feet x, y in 1/256 um */
+    int32_t lift_q8[XGO_LEG_COUNT][2]; /* where the current swing started */
+    int32_t swing_height_um[XGO_LEG_COUNT]; /* latched at lift-off */
+    uint8_t swinging[XGO_LEG_COUNT];
+    uint32_t phase;      /* master phase, 2^32 = one cycle */
+    uint32_t rate;       /* phase advance of the last tick */
+    uint32_t rate_base;  /* nominal rate, slewed after pace/gait changes */
+    uint8_t type;        /* gait table in use */
+    uint8_t standing;    /* 1 = stopped, four feet at stance */
+    int32_t v_ramp[3];   /* ramped vx, vy (um/s), vyaw (mdeg/s) */
+
+    /* ---- diagnostics ---- */
+    uint32_t ticks;           /* ticks since init */
+    uint32_t limited_ticks;   /* ticks with the speed limited (cadence cap) */
+    uint32_t boosted_ticks;   /* ticks with the cadence raised by a transient */
+    uint32_t clamped_ticks;   /* ticks where a stance foot hit the reach box */
+    uint32_t switches;        /* gait table switches performed */
+} xgo_gait_t;
+
+/* Standing at the stance: stance_um[leg] = nominal foot (x, y, z) in the
+ * machine frame relative to the body; z is ignored (the ground is z = 0),
+ * x and y are clamped to +-200 mm. */
+void xgo_gait_init(xgo_gait_t *g, const int32_t stance_um[XGO_LEG_COUNT][3]);
+
+/* Advance one control period (2 ms) under cmd. */
+void xgo_gait_tick(xgo_gait_t *g, const xgo_gait_command_t *cmd);
+
+/* 1 when stopped with all four feet down exactly at the stance points. */
+int xgo_gait_is_standing(const xgo_gait_t *g);
+
+/* Nominal cycle period of a gait at a pace in ms (the cadence at low speed;
+ * faster commands raise the cadence); out-of-range arguments = defaults. */
+uint32_t xgo_gait_period_ms(uint8_t type, uint8_t pace);
+
+/* Duty factor of a gait in 1/100 (trot 50, walk 75, ...). */
+uint32_t xgo_gait_duty_pct(uint8_t type);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* XGO_GAIT_H */

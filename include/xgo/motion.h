@@ -1,0 +1,104 @@
+/*
+ * xgo/motion.h - the motion core: registers in, twelve servo targets out,
+ * once per control tick.
+ *
+ * Data flow per tick (docs/motion.md):
+ *   host writes (xgo_regs_take_written) -> mode + commands
+ *   whole-unit: velocity -> gait -> feet; body registers + periodic motions
+ *               + self-stabilisation -> body pose; or a preset action's pose
+ *   leg mode:   foot registers -> feet in the leg frames
+ *   servo mode: servo registers -> joint angles
+ *   -> body IK -> leg IK -> joint targets -> emulated servos (rate limited)
+ *   -> registers: mode 0x00, battery 0x01, joints 0x50..0x5B, action 0x3E,
+ *      attitude 0x62..0x64
+ *
+ * Portable: no OS calls, no heap, no globals, no floating point.
+ */
+#ifndef XGO_MOTION_H
+#define XGO_MOTION_H
+
+#include <stdint.h>
+
+#include "xgo/profile.h" /* before gait.h: it defines the leg enum */
+#include "xgo/actions.h"
+#include "xgo/gait.h"
+#include "xgo/kinematics.h"
+#include "xgo/regs.h"
+#include "xgo/sensors.h"
+#include "xgo/servos.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Values of the mode register 0x00. */
+typedef enum xgo_mode_e {
+    XGO_MODE_WHOLE_UNIT = 0x00, /* gait, body pose, periodic motions */
+    XGO_MODE_LEG = 0x01,        /* feet follow 0x40..0x4B */
+    XGO_MODE_SERVO = 0x02,      /* joints follow 0x50..0x5B at the speed of 0x5C */
+    XGO_MODE_DEBUG = 0x03,      /* after a write to 0x20: joints hold, some may be limp */
+    XGO_MODE_ACTION = 0x04,     /* a preset action (0x3E) is running */
+    XGO_MODE_CALIBRATION = 0x05 /* 0x04 = 1: all joints limp, 0x21 records zeros */
+} xgo_mode_t;
+
+/* Command ranges of the velocity registers (vendor ranges; the vendor gives no
+ * unit for vx/vy: cm/s, see docs/decisions.md). */
+#define XGO_VX_MAX_UM_S 250000
+#define XGO_VY_MAX_UM_S 180000
+#define XGO_VYAW_MAX_MDEG_S 100000
+
+/* Period registers 0x39..0x3B, 0x80..0x82: byte 1..255 -> 1.5 .. 8 s. */
+#define XGO_PERIOD_MIN_MS 1500
+#define XGO_PERIOD_MAX_MS 8000
+/* Mark time 0x3C: byte 1..255 -> step height (profile dependent max). */
+#define XGO_MARK_TIME_MIN_UM 10000
+
+/* Joint speed outside servo mode: the bound on how far any joint moves in one
+ * tick (600 deg/s at 500 Hz). */
+#define XGO_JOINT_STEP_MAX_MDEG 1200
+/* Servo mode, register 0x5C: byte 0..255 -> 10 .. 600 deg/s. */
+#define XGO_SERVO_SPEED_MIN_MDEG_S 10000
+#define XGO_SERVO_SPEED_MAX_MDEG_S 600000
+
+typedef struct xgo_motion_s {
+    const xgo_profile_t *profile;
+    uint32_t tick_hz;
+    uint8_t mode;             /* xgo_mode_t */
+    uint8_t group_mode;       /* the mode the last group write selected */
+    uint8_t perform;          /* 0x03 = 1: cycle actions */
+    uint8_t perform_last;     /* the action perform mode started last */
+    uint8_t calibration;
+    uint8_t action_id;        /* running preset action (incl. 255 reset), 0 none */
+    xgo_gait_t gait;
+    xgo_action_player_t actions;
+    xgo_servos_t servos;
+    xgo_imu_t imu;
+    xgo_battery_t battery;
+    xgo_vec3_t stance_um[XGO_LEG_COUNT];
+    xgo_body_pose_t pose;     /* body pose used this tick (machine frame) */
+    int32_t servo_cmd_mdeg[XGO_SERVO_COUNT]; /* servo-mode commands */
+    xgo_bam_t periodic_phase[6]; /* roll, pitch, yaw, x, y, z */
+    int32_t stab_mdeg[2];     /* self-stabilisation roll, pitch correction */
+    uint32_t nv_changes;      /* counts changes of non-volatile data */
+} xgo_motion_t;
+
+void xgo_motion_init(xgo_motion_t *m, const xgo_profile_t *profile, uint8_t battery_pct,
+                     uint32_t tick_hz);
+
+/* One control tick: consume host writes in regs, move, publish state to regs. */
+void xgo_motion_tick(xgo_motion_t *m, xgo_regs_t *regs);
+
+/* Write the board's state into the registers (mode, battery, joints, action,
+ * attitude); xgo_motion_tick ends with it, the board calls it at init too so
+ * the joints read where they are from power-up. */
+void xgo_motion_publish(const xgo_motion_t *m, xgo_regs_t *r);
+
+/* Signed register byte -> value in [-limit, limit]; 0x7F and 0x80 are both
+ * zero (the vendor library sends 0x7F for zero). */
+int32_t xgo_signed_byte_to_value(uint8_t b, int32_t limit);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* XGO_MOTION_H */

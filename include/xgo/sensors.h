@@ -1,0 +1,62 @@
+/*
+ * xgo/sensors.h - the board's emulated IMU and battery.
+ *
+ * IMU: roll and pitch are the body's attitude relative to the ground plus the
+ * ground's own tilt (an emulator input: a ramp under the robot), composed by
+ * addition (exact for a tilt about one axis, a small-angle approximation for
+ * both at once; docs/motion.md). Yaw integrates the body's turning rate and
+ * is reported in [-180, 180) degrees.
+ *
+ * Battery: a charge counter in micro-percent that drains at a constant rate,
+ * faster while walking (rates in docs/motion.md). The register shows the
+ * charge in whole percent, rounded up, so a full battery reads 100 until
+ * one percent has gone.
+ *
+ * Portable: no OS calls, no heap, no globals, no floating point.
+ */
+#ifndef XGO_SENSORS_H
+#define XGO_SENSORS_H
+
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Drain per control tick at 500 Hz, micro-percent: 100 % lasts 120 min idle
+ * and 60 min walking. */
+#define XGO_BATTERY_IDLE_UPCT_PER_TICK 28u   /* 1e8 / (120 * 60 * 500) = 27.8 */
+#define XGO_BATTERY_WALK_UPCT_PER_TICK 56u   /* 1e8 / ( 60 * 60 * 500) = 55.6 */
+
+typedef struct xgo_battery_s {
+    uint32_t charge_upct; /* 0 .. 100,000,000 */
+} xgo_battery_t;
+
+void xgo_battery_init(xgo_battery_t *b, uint8_t percent);
+void xgo_battery_tick(xgo_battery_t *b, int walking);
+uint8_t xgo_battery_percent(const xgo_battery_t *b);
+
+typedef struct xgo_imu_s {
+    int32_t ground_roll_mdeg;  /* tilt of the ground under the robot */
+    int32_t ground_pitch_mdeg;
+    int32_t yaw_acc;           /* integrated yaw, mdeg * XGO_IMU_TICK_HZ, wrapped */
+    int32_t roll_mdeg;         /* outputs, updated by xgo_imu_tick */
+    int32_t pitch_mdeg;
+    int32_t yaw_mdeg;
+} xgo_imu_t;
+
+void xgo_imu_init(xgo_imu_t *imu);
+void xgo_imu_set_ground_tilt(xgo_imu_t *imu, int32_t roll_mdeg, int32_t pitch_mdeg);
+/* Zero the integrated yaw (action 255 does this, like a power-up). */
+void xgo_imu_reset_yaw(xgo_imu_t *imu);
+
+/* One tick: body attitude relative to the ground (mdeg), the body's yaw rate
+ * (mdeg/s) and the tick rate (Hz). */
+void xgo_imu_tick(xgo_imu_t *imu, int32_t body_roll_mdeg, int32_t body_pitch_mdeg,
+                  int32_t body_yaw_mdeg, int32_t yaw_rate_mdeg_s, uint32_t tick_hz);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* XGO_SENSORS_H */

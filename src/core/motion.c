@@ -1,0 +1,461 @@
+/*
+ * The motion core: modes, register decoding, body pose, and the hand-off to
+ * gait, actions, kinematics, servos and sensors.
+ */
+#include "xgo/motion.h"
+
+#include <string.h>
+
+#define PERIODIC_AXES 6 /* roll, pitch, yaw, x, y, z */
+
+/* Self-stabilisation: each tick the correction moves by 1/STAB_GAIN_SHIFT^2
+ * of the remaining IMU error (time constant 32 ticks = 64 ms at 500 Hz). */
+#define STAB_GAIN_SHIFT 5
+
+static int32_t clamp32(int32_t v, int32_t lo, int32_t hi)
+{
+    return v < lo ? lo : (v > hi ? hi : v);
+}
+
+int32_t xgo_signed_byte_to_value(uint8_t b, int32_t limit)
+{
+    xgo_range_t r;
+    if (b == 0x7Fu || b == 0x80u) {
+        return 0;
+    }
+    r.lo = -limit;
+    r.hi = limit;
+    return xgo_byte_to_range(&r, b);
+}
+
+static int32_t mark_time_max_um(const xgo_profile_t *p)
+{
+    /* vendor MARK_TIME_LIMIT: Mini 10..35 mm, Lite 10..25 mm */
+    return p == xgo_profile_lite() ? 25000 : 35000;
+}
+
+static void stance_array(const xgo_motion_t *m, int32_t out[XGO_LEG_COUNT][3])
+{
+    unsigned i;
+    for (i = 0; i < XGO_LEG_COUNT; i++) {
+        out[i][0] = m->stance_um[i].x;
+        out[i][1] = m->stance_um[i].y;
+        out[i][2] = m->stance_um[i].z;
+    }
+}
+
+static void reset_gait(xgo_motion_t *m)
+{
+    int32_t stance[XGO_LEG_COUNT][3];
+    stance_array(m, stance);
+    xgo_gait_init(&m->gait, (const int32_t(*)[3])stance);
+}
+
+static void standing_joints(const xgo_motion_t *m, int32_t q[XGO_SERVO_COUNT])
+{
+    xgo_body_pose_t stand;
+    xgo_body_pose_stand(m->profile, &stand);
+    xgo_body_to_joints(m->profile, &stand, m->stance_um, (int32_t(*)[XGO_JOINT_COUNT])q);
+}
+
+void xgo_motion_init(xgo_motion_t *m, const xgo_profile_t *profile, uint8_t battery_pct,
+                     uint32_t tick_hz)
+{
+    int32_t q[XGO_SERVO_COUNT];
+    memset(m, 0, sizeof *m);
+    m->profile = profile;
+    m->tick_hz = tick_hz == 0 ? 1u : tick_hz;
+    m->mode = XGO_MODE_WHOLE_UNIT;
+    m->group_mode = XGO_MODE_WHOLE_UNIT;
+    xgo_stance_feet(profile, m->stance_um);
+    reset_gait(m);
+    xgo_action_init(&m->actions);
+    xgo_body_pose_stand(profile, &m->pose);
+    standing_joints(m, q);
+    xgo_servos_init(&m->servos, profile, q);
+    xgo_imu_init(&m->imu);
+    xgo_battery_init(&m->battery, battery_pct);
+}
+
+/* ------------------------------------------------------------ host writes */
+
+static int any_written(xgo_regs_t *r, unsigned first, unsigned last)
+{
+    int any = 0;
+    unsigned a;
+    for (a = first; a <= last; a++) {
+        any |= xgo_regs_take_written(r, (uint8_t)a);
+    }
+    return any;
+}
+
+static void stop_action(xgo_motion_t *m)
+{
+    xgo_action_stop(&m->actions);
+    m->action_id = 0;
+}
+
+static void start_action(xgo_motion_t *m, uint8_t id)
+{
+    if (id == 0) {
+        stop_action(m);
+        return;
+    }
+    if (xgo_action_start(&m->actions, id)) {
+        m->action_id = id;
+        reset_gait(m); /* actions start from the stance */
+    }
+}
+
+/* Motion registers back to their initial values (standing posture, 0x5D). */
+static void clear_motion_registers(xgo_regs_t *r)
+{
+    unsigned a;
+    for (a = XGO_REG_VX; a <= XGO_REG_MARK_TIME; a++) {
+        const xgo_reg_desc_t *d = xgo_reg_find((uint8_t)a);
+        xgo_regs_set(r, (uint8_t)a, d->initial);
+    }
+    for (a = XGO_REG_PERIOD_X; a <= XGO_REG_PERIOD_Z; a++) {
+        xgo_regs_set(r, (uint8_t)a, 0);
+    }
+}
+
+/* Action 255: every register back to its initial value, then 1 s of
+ * standing (the player's reset action). */
+static void reset_all(xgo_motion_t *m, xgo_regs_t *r)
+{
+    xgo_regs_restore_initial(r);
+    xgo_servos_load(&m->servos, XGO_SERVO_ALL_MASK);
+    m->perform = 0;
+    m->perform_last = 0;
+    m->calibration = 0;
+    m->group_mode = XGO_MODE_WHOLE_UNIT;
+    memset(m->periodic_phase, 0, sizeof m->periodic_phase);
+    memset(m->stab_mdeg, 0, sizeof m->stab_mdeg);
+    start_action(m, XGO_ACTION_RESET);
+}
+
+static void apply_unload(xgo_motion_t *m, uint8_t v)
+{
+    if (v == 0x00) {
+        xgo_servos_load(&m->servos, XGO_SERVO_ALL_MASK);
+    } else if (v == 0x01) {
+        xgo_servos_unload(&m->servos, XGO_SERVO_ALL_MASK);
+    } else if (v >= 0x11 && v <= 0x14) {
+        xgo_servos_unload(&m->servos, XGO_SERVO_LEG_MASK(v - 0x11));
+    } else if (v >= 0x21 && v <= 0x24) {
+        xgo_servos_load(&m->servos, XGO_SERVO_LEG_MASK(v - 0x21));
+    }
+}
+
+static void capture_servo_commands(xgo_motion_t *m, xgo_regs_t *r, int entering)
+{
+    unsigned i;
+    if (entering) {
+        memcpy(m->servo_cmd_mdeg, m->servos.angle_mdeg, sizeof m->servo_cmd_mdeg);
+    }
+    for (i = 0; i < XGO_SERVO_COUNT; i++) {
+        if (xgo_regs_take_written(r, (uint8_t)(XGO_REG_SERVO11 + i))) {
+            m->servo_cmd_mdeg[i] = xgo_byte_to_joint(m->profile, (xgo_joint_t)(i % XGO_JOINT_COUNT),
+                                                     xgo_regs_get(r, (uint8_t)(XGO_REG_SERVO11 + i)));
+        }
+    }
+}
+
+static void handle_writes(xgo_motion_t *m, xgo_regs_t *r)
+{
+    int reset = 0;
+
+    if (any_written(r, XGO_REG_VX, XGO_REG_MOVE_MODE) ||
+        any_written(r, XGO_REG_PERIOD_X, XGO_REG_PERIOD_Z) ||
+        xgo_regs_take_written(r, XGO_REG_GAIT_TYPE)) {
+        m->group_mode = XGO_MODE_WHOLE_UNIT;
+    }
+    if (any_written(r, XGO_REG_LEG1_X, XGO_REG_LEG4_Z)) {
+        m->group_mode = XGO_MODE_LEG;
+    }
+    {
+        /* Servo group: capture which joints were commanded before the
+         * flags are consumed. */
+        unsigned i;
+        int servo_written = xgo_regs_take_written(r, XGO_REG_SERVO_SPEED);
+        for (i = 0; i < XGO_SERVO_COUNT && !servo_written; i++) {
+            servo_written = xgo_regs_was_written(r, (uint8_t)(XGO_REG_SERVO11 + i));
+        }
+        if (servo_written) {
+            capture_servo_commands(m, r, m->group_mode != XGO_MODE_SERVO);
+            m->group_mode = XGO_MODE_SERVO;
+        }
+    }
+    if (xgo_regs_take_written(r, XGO_REG_UNLOAD)) {
+        apply_unload(m, xgo_regs_get(r, XGO_REG_UNLOAD));
+        m->group_mode = XGO_MODE_DEBUG;
+    }
+    if (xgo_regs_take_written(r, XGO_REG_CALIBRATION)) {
+        const uint8_t on = xgo_regs_get(r, XGO_REG_CALIBRATION);
+        if (on && !m->calibration) {
+            stop_action(m);
+            xgo_servos_unload(&m->servos, XGO_SERVO_ALL_MASK);
+        } else if (!on && m->calibration) {
+            xgo_servos_load(&m->servos, XGO_SERVO_ALL_MASK);
+            m->group_mode = XGO_MODE_WHOLE_UNIT;
+        }
+        m->calibration = on;
+    }
+    if (xgo_regs_take_written(r, XGO_REG_SET_ZERO)) {
+        /* Only meaningful in calibration, where the joints are limp and
+         * have been placed in the reference pose. */
+        if (xgo_regs_get(r, XGO_REG_SET_ZERO) == 1 && m->calibration) {
+            xgo_servos_record_zero(&m->servos);
+            m->nv_changes++;
+        }
+        xgo_regs_set(r, XGO_REG_SET_ZERO, 0);
+    }
+    if (any_written(r, XGO_REG_BT_NAME, XGO_REG_BT_NAME + XGO_BT_NAME_LEN - 1u)) {
+        m->nv_changes++;
+    }
+    if (xgo_regs_take_written(r, XGO_REG_STAND)) {
+        if (xgo_regs_get(r, XGO_REG_STAND) == 1) {
+            stop_action(m);
+            m->perform = 0;
+            clear_motion_registers(r);
+            m->group_mode = XGO_MODE_WHOLE_UNIT;
+        }
+        xgo_regs_set(r, XGO_REG_STAND, 0);
+    }
+    if (xgo_regs_take_written(r, XGO_REG_PERFORM)) {
+        m->perform = xgo_regs_get(r, XGO_REG_PERFORM);
+    }
+    if (xgo_regs_take_written(r, XGO_REG_ACTION)) {
+        const uint8_t id = xgo_regs_get(r, XGO_REG_ACTION);
+        if (id == XGO_ACTION_RESET) {
+            reset = 1;
+        } else {
+            start_action(m, id);
+            m->group_mode = XGO_MODE_WHOLE_UNIT;
+        }
+    }
+    if (m->perform && m->action_id == 0 && !m->calibration) {
+        m->perform_last = xgo_action_next_in_cycle(m->perform_last);
+        start_action(m, m->perform_last);
+    }
+    if (reset) {
+        reset_all(m, r);
+    }
+}
+
+/* ------------------------------------------------------------ whole unit */
+
+static void advance_periodic(xgo_motion_t *m, unsigned axis, uint8_t period_byte)
+{
+    static const xgo_range_t period_ms = {XGO_PERIOD_MIN_MS, XGO_PERIOD_MAX_MS};
+    const uint32_t ticks = (uint32_t)xgo_byte_to_range(&period_ms, period_byte) * m->tick_hz / 1000u;
+    /* One turn of phase per period: 2^32 / ticks per tick. */
+    m->periodic_phase[axis] += (xgo_bam_t)(((uint64_t)1 << 32) / (ticks == 0 ? 1u : ticks));
+}
+
+/* amplitude * sin(phase), amplitude in the caller's unit */
+static int32_t wave(xgo_bam_t phase, int32_t amplitude)
+{
+    return xgo_mul_q(amplitude, xgo_sin(phase), 30);
+}
+
+static void body_pose_from_registers(xgo_motion_t *m, const xgo_regs_t *r, xgo_body_pose_t *pose)
+{
+    const xgo_profile_t *p = m->profile;
+    static const uint8_t period_reg[PERIODIC_AXES] = {XGO_REG_PERIOD_ROLL, XGO_REG_PERIOD_PITCH,
+                                                      XGO_REG_PERIOD_YAW, XGO_REG_PERIOD_X,
+                                                      XGO_REG_PERIOD_Y, XGO_REG_PERIOD_Z};
+    int32_t v[PERIODIC_AXES];
+    unsigned axis;
+
+    v[0] = xgo_signed_byte_to_value(xgo_regs_get(r, XGO_REG_BODY_ROLL), p->body_mdeg[0].hi);
+    v[1] = xgo_signed_byte_to_value(xgo_regs_get(r, XGO_REG_BODY_PITCH), p->body_mdeg[1].hi);
+    v[2] = xgo_signed_byte_to_value(xgo_regs_get(r, XGO_REG_BODY_YAW), p->body_mdeg[2].hi);
+    v[3] = xgo_signed_byte_to_value(xgo_regs_get(r, XGO_REG_BODY_X), p->body_um[0].hi);
+    v[4] = xgo_signed_byte_to_value(xgo_regs_get(r, XGO_REG_BODY_Y), p->body_um[1].hi);
+    v[5] = xgo_byte_to_range(&p->body_um[2], xgo_regs_get(r, XGO_REG_BODY_Z));
+
+    /* A periodic motion replaces the static value on its axis: a sinusoid
+     * of half the axis' range around its middle (the spec's "half of the
+     * position limit"), starting at the middle. */
+    for (axis = 0; axis < PERIODIC_AXES; axis++) {
+        const uint8_t b = xgo_regs_get(r, period_reg[axis]);
+        const xgo_range_t *range = axis < 3 ? &p->body_mdeg[axis] : &p->body_um[axis - 3];
+        if (b == 0) {
+            m->periodic_phase[axis] = 0;
+            continue;
+        }
+        advance_periodic(m, axis, b);
+        v[axis] = (range->lo + range->hi) / 2 + wave(m->periodic_phase[axis], (range->hi - range->lo) / 4);
+    }
+
+    /* Self-stabilisation levels the body against the IMU (roll, pitch). */
+    if (xgo_regs_get(r, XGO_REG_IMU_MODE) == 1) {
+        m->stab_mdeg[0] -= m->imu.roll_mdeg >> STAB_GAIN_SHIFT;
+        m->stab_mdeg[1] -= m->imu.pitch_mdeg >> STAB_GAIN_SHIFT;
+    } else {
+        m->stab_mdeg[0] -= m->stab_mdeg[0] >> STAB_GAIN_SHIFT;
+        m->stab_mdeg[1] -= m->stab_mdeg[1] >> STAB_GAIN_SHIFT;
+    }
+    m->stab_mdeg[0] = clamp32(m->stab_mdeg[0], 2 * p->body_mdeg[0].lo, 2 * p->body_mdeg[0].hi);
+    m->stab_mdeg[1] = clamp32(m->stab_mdeg[1], 2 * p->body_mdeg[1].lo, 2 * p->body_mdeg[1].hi);
+
+    pose->roll_mdeg = clamp32(v[0] + m->stab_mdeg[0], p->body_mdeg[0].lo, p->body_mdeg[0].hi);
+    pose->pitch_mdeg = clamp32(v[1] + m->stab_mdeg[1], p->body_mdeg[1].lo, p->body_mdeg[1].hi);
+    pose->yaw_mdeg = v[2];
+    pose->x_um = v[3];
+    pose->y_um = v[4];
+    pose->z_um = v[5];
+}
+
+static void gait_command_from_registers(const xgo_motion_t *m, const xgo_regs_t *r,
+                                        xgo_gait_command_t *cmd)
+{
+    static const xgo_range_t unit = {0, 255};
+    const uint8_t mark = xgo_regs_get(r, XGO_REG_MARK_TIME);
+    memset(cmd, 0, sizeof *cmd);
+    cmd->vx_um_s = xgo_signed_byte_to_value(xgo_regs_get(r, XGO_REG_VX), XGO_VX_MAX_UM_S);
+    cmd->vy_um_s = xgo_signed_byte_to_value(xgo_regs_get(r, XGO_REG_VY), XGO_VY_MAX_UM_S);
+    cmd->vyaw_mdeg_s = xgo_signed_byte_to_value(xgo_regs_get(r, XGO_REG_VYAW), XGO_VYAW_MAX_MDEG_S);
+    if (mark != 0) {
+        const int32_t span = mark_time_max_um(m->profile) - XGO_MARK_TIME_MIN_UM;
+        cmd->mark_time_um = XGO_MARK_TIME_MIN_UM + xgo_muldiv(xgo_byte_to_range(&unit, mark), span, 255);
+    }
+    cmd->type = xgo_regs_get(r, XGO_REG_GAIT_TYPE);
+    cmd->pace = xgo_regs_get(r, XGO_REG_MOVE_MODE);
+}
+
+/* Feet and pose for a running action (255, the reset, stands for 1 s). */
+static void action_pose(xgo_motion_t *m, xgo_body_pose_t *pose, xgo_vec3_t feet[XGO_LEG_COUNT])
+{
+    xgo_pose_t ap;
+    unsigned leg;
+    xgo_body_pose_stand(m->profile, pose);
+    memcpy(feet, m->stance_um, sizeof m->stance_um);
+    if (!xgo_action_tick(&m->actions, &ap)) {
+        m->action_id = 0;
+    }
+    pose->x_um += ap.body_um[0];
+    pose->y_um += ap.body_um[1];
+    pose->z_um += ap.body_um[2];
+    pose->roll_mdeg += ap.body_mdeg[0];
+    pose->pitch_mdeg += ap.body_mdeg[1];
+    pose->yaw_mdeg += ap.body_mdeg[2];
+    for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
+        feet[leg].x += ap.foot_um[leg][0];
+        feet[leg].y += ap.foot_um[leg][1];
+        feet[leg].z += ap.foot_um[leg][2];
+    }
+}
+
+static int whole_unit_targets(xgo_motion_t *m, const xgo_regs_t *r, int32_t q[XGO_SERVO_COUNT],
+                              int32_t *yaw_rate_mdeg_s)
+{
+    xgo_vec3_t feet[XGO_LEG_COUNT];
+    xgo_body_pose_t pose;
+    int walking = 0;
+    unsigned leg;
+
+    *yaw_rate_mdeg_s = 0;
+    if (m->action_id != 0) {
+        action_pose(m, &pose, feet);
+    } else {
+        xgo_gait_command_t cmd;
+        gait_command_from_registers(m, r, &cmd);
+        xgo_gait_tick(&m->gait, &cmd);
+        for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
+            feet[leg].x = m->gait.foot_um[leg][0];
+            feet[leg].y = m->gait.foot_um[leg][1];
+            feet[leg].z = m->gait.foot_um[leg][2];
+        }
+        body_pose_from_registers(m, r, &pose);
+        walking = !xgo_gait_is_standing(&m->gait);
+        *yaw_rate_mdeg_s = m->gait.vyaw_mdeg_s;
+    }
+    m->pose = pose;
+    xgo_body_to_joints(m->profile, &pose, feet, (int32_t(*)[XGO_JOINT_COUNT])q);
+    return walking || m->action_id != 0;
+}
+
+/* ------------------------------------------------------------ other modes */
+
+static void leg_targets(xgo_motion_t *m, const xgo_regs_t *r, int32_t q[XGO_SERVO_COUNT])
+{
+    const xgo_profile_t *p = m->profile;
+    unsigned leg;
+    for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
+        xgo_vec3_t foot;
+        foot.x = xgo_signed_byte_to_value(xgo_regs_get(r, (uint8_t)XGO_FOOT_REG(leg, XGO_AXIS_X)),
+                                          p->foot_um[XGO_AXIS_X].hi);
+        foot.y = xgo_signed_byte_to_value(xgo_regs_get(r, (uint8_t)XGO_FOOT_REG(leg, XGO_AXIS_Y)),
+                                          p->foot_um[XGO_AXIS_Y].hi);
+        foot.z = xgo_byte_to_foot(p, XGO_AXIS_Z, xgo_regs_get(r, (uint8_t)XGO_FOOT_REG(leg, XGO_AXIS_Z)));
+        xgo_leg_ik(p, (xgo_leg_t)leg, &foot, &q[XGO_JOINT_COUNT * leg]);
+    }
+    xgo_body_pose_stand(p, &m->pose);
+}
+
+static int32_t servo_mode_step(const xgo_motion_t *m, const xgo_regs_t *r)
+{
+    static const xgo_range_t speed = {XGO_SERVO_SPEED_MIN_MDEG_S, XGO_SERVO_SPEED_MAX_MDEG_S};
+    const int32_t per_s = xgo_byte_to_range(&speed, xgo_regs_get(r, XGO_REG_SERVO_SPEED));
+    const int32_t step = per_s / (int32_t)m->tick_hz;
+    return step < 1 ? 1 : step;
+}
+
+/* ------------------------------------------------------------ publish */
+
+void xgo_motion_publish(const xgo_motion_t *m, xgo_regs_t *r)
+{
+    uint8_t joints[XGO_SERVO_COUNT];
+    unsigned i;
+    xgo_joints_to_bytes(m->profile, (const int32_t(*)[XGO_JOINT_COUNT])m->servos.angle_mdeg, joints);
+    for (i = 0; i < XGO_SERVO_COUNT; i++) {
+        xgo_regs_set(r, (uint8_t)(XGO_REG_SERVO11 + i), joints[i]);
+    }
+    xgo_regs_set(r, XGO_REG_MODE, m->mode);
+    xgo_regs_set(r, XGO_REG_BATTERY, xgo_battery_percent(&m->battery));
+    xgo_regs_set(r, XGO_REG_ACTION, m->action_id);
+    xgo_regs_set(r, XGO_REG_PERFORM, m->perform);
+    xgo_regs_set_attitude(r, m->imu.roll_mdeg, m->imu.pitch_mdeg, m->imu.yaw_mdeg);
+}
+
+void xgo_motion_tick(xgo_motion_t *m, xgo_regs_t *r)
+{
+    int32_t q[XGO_SERVO_COUNT];
+    int32_t step = XGO_JOINT_STEP_MAX_MDEG;
+    int32_t yaw_rate = 0;
+    int busy = 0;
+
+    handle_writes(m, r);
+    m->mode = m->action_id != 0 ? XGO_MODE_ACTION
+              : m->calibration  ? XGO_MODE_CALIBRATION
+                                : m->group_mode;
+    switch (m->mode) {
+    case XGO_MODE_WHOLE_UNIT:
+    case XGO_MODE_ACTION:
+        busy = whole_unit_targets(m, r, q, &yaw_rate);
+        break;
+    case XGO_MODE_LEG:
+        leg_targets(m, r, q);
+        break;
+    case XGO_MODE_SERVO:
+        memcpy(q, m->servo_cmd_mdeg, sizeof q);
+        step = servo_mode_step(m, r);
+        xgo_body_pose_stand(m->profile, &m->pose);
+        break;
+    default: /* debug, calibration: hold */
+        memcpy(q, m->servos.angle_mdeg, sizeof q);
+        break;
+    }
+    xgo_servos_set_targets(&m->servos, q);
+    xgo_servos_tick(&m->servos, step);
+    xgo_imu_tick(&m->imu, m->pose.roll_mdeg, m->pose.pitch_mdeg, m->pose.yaw_mdeg, yaw_rate,
+                 m->tick_hz);
+    xgo_battery_tick(&m->battery, busy);
+    if (m->mode == XGO_MODE_ACTION && m->action_id == 0) {
+        m->mode = m->group_mode;
+    }
+    xgo_motion_publish(m, r);
+}

@@ -1,0 +1,75 @@
+/*
+ * IMU and battery models.
+ */
+#include "xgo/sensors.h"
+
+#include <string.h>
+
+#define FULL_UPCT 100000000u
+#define UPCT_PER_PCT 1000000u
+
+void xgo_battery_init(xgo_battery_t *b, uint8_t percent)
+{
+    b->charge_upct = (percent > 100 ? 100u : (uint32_t)percent) * UPCT_PER_PCT;
+}
+
+void xgo_battery_tick(xgo_battery_t *b, int walking)
+{
+    const uint32_t drain = walking ? XGO_BATTERY_WALK_UPCT_PER_TICK : XGO_BATTERY_IDLE_UPCT_PER_TICK;
+    b->charge_upct = b->charge_upct > drain ? b->charge_upct - drain : 0u;
+}
+
+uint8_t xgo_battery_percent(const xgo_battery_t *b)
+{
+    const uint32_t c = b->charge_upct > FULL_UPCT ? FULL_UPCT : b->charge_upct;
+    return (uint8_t)((c + UPCT_PER_PCT - 1u) / UPCT_PER_PCT);
+}
+
+void xgo_imu_init(xgo_imu_t *imu)
+{
+    memset(imu, 0, sizeof *imu);
+}
+
+void xgo_imu_set_ground_tilt(xgo_imu_t *imu, int32_t roll_mdeg, int32_t pitch_mdeg)
+{
+    /* A ramp steeper than 45 degrees is not ground a dog stands on. */
+    const int32_t lim = 45000;
+    imu->ground_roll_mdeg = roll_mdeg < -lim ? -lim : (roll_mdeg > lim ? lim : roll_mdeg);
+    imu->ground_pitch_mdeg = pitch_mdeg < -lim ? -lim : (pitch_mdeg > lim ? lim : pitch_mdeg);
+}
+
+void xgo_imu_reset_yaw(xgo_imu_t *imu)
+{
+    imu->yaw_acc = 0;
+}
+
+/* Wrap an angle in mdeg into [-180000, 180000). */
+static int32_t wrap_mdeg(int64_t a)
+{
+    a %= 360000;
+    if (a >= 180000) {
+        a -= 360000;
+    } else if (a < -180000) {
+        a += 360000;
+    }
+    return (int32_t)a;
+}
+
+void xgo_imu_tick(xgo_imu_t *imu, int32_t body_roll_mdeg, int32_t body_pitch_mdeg,
+                  int32_t body_yaw_mdeg, int32_t yaw_rate_mdeg_s, uint32_t tick_hz)
+{
+    const int64_t turn = (int64_t)360000 * (int64_t)(tick_hz == 0 ? 1u : tick_hz);
+    int64_t acc;
+    if (tick_hz == 0) {
+        tick_hz = 1;
+    }
+    /* yaw_acc counts mdeg * tick_hz, so adding the rate each tick integrates
+     * exactly; it wraps at one turn and stays well inside int32 for rates
+     * up to thousands of degrees per second. */
+    acc = (int64_t)imu->yaw_acc + yaw_rate_mdeg_s;
+    acc %= turn;
+    imu->yaw_acc = (int32_t)acc;
+    imu->roll_mdeg = wrap_mdeg((int64_t)body_roll_mdeg + imu->ground_roll_mdeg);
+    imu->pitch_mdeg = wrap_mdeg((int64_t)body_pitch_mdeg + imu->ground_pitch_mdeg);
+    imu->yaw_mdeg = wrap_mdeg(acc / (int64_t)tick_hz + body_yaw_mdeg);
+}

@@ -1,0 +1,95 @@
+/*
+ * Emulated servos: rate-limited tracking of targets, limp joints, zero offsets.
+ */
+#include "xgo/servos.h"
+
+#include <string.h>
+
+static int32_t clamp_joint(const xgo_servos_t *s, unsigned i, int32_t mdeg)
+{
+    const xgo_range_t *r = &s->profile->joint_mdeg[i % XGO_JOINT_COUNT];
+    return mdeg < r->lo ? r->lo : (mdeg > r->hi ? r->hi : mdeg);
+}
+
+void xgo_servos_init(xgo_servos_t *s, const xgo_profile_t *profile,
+                     const int32_t initial_mdeg[XGO_SERVO_COUNT])
+{
+    unsigned i;
+    memset(s, 0, sizeof *s);
+    s->profile = profile;
+    for (i = 0; i < XGO_SERVO_COUNT; i++) {
+        s->angle_mdeg[i] = clamp_joint(s, i, initial_mdeg[i]);
+        s->target_mdeg[i] = s->angle_mdeg[i];
+    }
+}
+
+void xgo_servos_set_targets(xgo_servos_t *s, const int32_t target_mdeg[XGO_SERVO_COUNT])
+{
+    unsigned i;
+    for (i = 0; i < XGO_SERVO_COUNT; i++) {
+        if ((s->unloaded & (1u << i)) == 0) {
+            s->target_mdeg[i] = clamp_joint(s, i, target_mdeg[i]);
+        }
+    }
+}
+
+void xgo_servos_tick(xgo_servos_t *s, int32_t max_step_mdeg)
+{
+    unsigned i;
+    if (max_step_mdeg < 0) {
+        max_step_mdeg = 0;
+    }
+    for (i = 0; i < XGO_SERVO_COUNT; i++) {
+        /* Both are within the joint limits (|v| < 2^20), so no overflow. */
+        const int32_t error = s->target_mdeg[i] - s->angle_mdeg[i];
+        if ((s->unloaded & (1u << i)) != 0) {
+            continue;
+        }
+        if (error > max_step_mdeg) {
+            s->angle_mdeg[i] += max_step_mdeg;
+        } else if (error < -max_step_mdeg) {
+            s->angle_mdeg[i] -= max_step_mdeg;
+        } else {
+            s->angle_mdeg[i] = s->target_mdeg[i];
+        }
+    }
+}
+
+void xgo_servos_unload(xgo_servos_t *s, uint16_t mask)
+{
+    unsigned i;
+    s->unloaded = (uint16_t)((s->unloaded | mask) & XGO_SERVO_ALL_MASK);
+    for (i = 0; i < XGO_SERVO_COUNT; i++) {
+        if ((mask & (1u << i)) != 0) {
+            s->target_mdeg[i] = s->angle_mdeg[i];
+        }
+    }
+}
+
+void xgo_servos_load(xgo_servos_t *s, uint16_t mask)
+{
+    unsigned i;
+    for (i = 0; i < XGO_SERVO_COUNT; i++) {
+        if ((mask & s->unloaded & (1u << i)) != 0) {
+            s->target_mdeg[i] = s->angle_mdeg[i];
+        }
+    }
+    s->unloaded = (uint16_t)(s->unloaded & ~mask);
+}
+
+void xgo_servos_record_zero(xgo_servos_t *s)
+{
+    unsigned i;
+    /* The raw position the servo has now becomes 0 deg: from here on the
+     * board counts angles from it. */
+    for (i = 0; i < XGO_SERVO_COUNT; i++) {
+        s->zero_offset_mdeg[i] += s->angle_mdeg[i];
+        s->angle_mdeg[i] = clamp_joint(s, i, 0);
+        s->target_mdeg[i] = s->angle_mdeg[i];
+    }
+}
+
+int32_t xgo_servos_raw(const xgo_servos_t *s, unsigned joint)
+{
+    return joint < XGO_SERVO_COUNT ? s->angle_mdeg[joint] + s->zero_offset_mdeg[joint] : 0;
+}
