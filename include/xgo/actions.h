@@ -38,9 +38,10 @@
 extern "C" {
 #endif
 
-/* Action ids (register 0x3E). 1..19 are the spec's list, 20..24 our own
- * motions under the names the vendor uses for the XGO family
- * (docs/actions.md), 255 the reset (1 s in the stance). */
+/* Action ids (register 0x3E). 1..19 are the spec's list; 20..24 are our
+ * own motions, named after the XGO family's action lists (the Mini's
+ * protocol document has no names for them; docs/actions.md); 255 is the
+ * reset (1 s in the stance). */
 #define XGO_ACTION_NONE 0u
 #define XGO_ACTION_LIE_DOWN 1u
 #define XGO_ACTION_STAND_UP 2u
