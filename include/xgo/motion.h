@@ -76,6 +76,7 @@ typedef struct xgo_motion_s {
     xgo_battery_t battery;
     xgo_vec3_t stance_um[XGO_LEG_COUNT];
     xgo_body_pose_t pose;     /* body pose used this tick (machine frame) */
+    xgo_body_pose_t stand;    /* the standing pose (initial body registers) */
     int32_t servo_cmd_mdeg[XGO_SERVO_COUNT]; /* servo-mode commands */
     xgo_bam_t periodic_phase[6]; /* roll, pitch, yaw, x, y, z */
     int32_t stab_mdeg[2];     /* self-stabilisation roll, pitch correction */

@@ -51,11 +51,19 @@ static void reset_gait(xgo_motion_t *m)
     xgo_gait_init(&m->gait, (const int32_t(*)[3])stance);
 }
 
+/* The standing pose is what the body registers say at their initial values
+ * (height 0x80 = 97.6 mm on the Mini), so power-up, actions and the gait all
+ * stand at the same height. */
+static void standing_pose(const xgo_profile_t *p, xgo_body_pose_t *pose)
+{
+    const xgo_reg_desc_t *z = xgo_reg_find(XGO_REG_BODY_Z);
+    xgo_body_pose_stand(p, pose);
+    pose->z_um = xgo_byte_to_range(&p->body_um[XGO_AXIS_Z], z->initial);
+}
+
 static void standing_joints(const xgo_motion_t *m, int32_t q[XGO_SERVO_COUNT])
 {
-    xgo_body_pose_t stand;
-    xgo_body_pose_stand(m->profile, &stand);
-    xgo_body_to_joints(m->profile, &stand, m->stance_um, (int32_t(*)[XGO_JOINT_COUNT])q);
+    xgo_body_to_joints(m->profile, &m->stand, m->stance_um, (int32_t(*)[XGO_JOINT_COUNT])q);
 }
 
 void xgo_motion_init(xgo_motion_t *m, const xgo_profile_t *profile, uint8_t battery_pct,
@@ -70,7 +78,8 @@ void xgo_motion_init(xgo_motion_t *m, const xgo_profile_t *profile, uint8_t batt
     xgo_stance_feet(profile, m->stance_um);
     reset_gait(m);
     xgo_action_init(&m->actions);
-    xgo_body_pose_stand(profile, &m->pose);
+    standing_pose(profile, &m->stand);
+    m->pose = m->stand;
     standing_joints(m, q);
     xgo_servos_init(&m->servos, profile, q);
     xgo_imu_init(&m->imu);
@@ -331,7 +340,7 @@ static void action_pose(xgo_motion_t *m, xgo_body_pose_t *pose, xgo_vec3_t feet[
 {
     xgo_pose_t ap;
     unsigned leg;
-    xgo_body_pose_stand(m->profile, pose);
+    *pose = m->stand;
     memcpy(feet, m->stance_um, sizeof m->stance_um);
     if (!xgo_action_tick(&m->actions, &ap)) {
         m->action_id = 0;
@@ -393,7 +402,7 @@ static void leg_targets(xgo_motion_t *m, const xgo_regs_t *r, int32_t q[XGO_SERV
         foot.z = xgo_byte_to_foot(p, XGO_AXIS_Z, xgo_regs_get(r, (uint8_t)XGO_FOOT_REG(leg, XGO_AXIS_Z)));
         xgo_leg_ik(p, (xgo_leg_t)leg, &foot, &q[XGO_JOINT_COUNT * leg]);
     }
-    xgo_body_pose_stand(p, &m->pose);
+    m->pose = m->stand;
 }
 
 static int32_t servo_mode_step(const xgo_motion_t *m, const xgo_regs_t *r)
@@ -443,7 +452,7 @@ void xgo_motion_tick(xgo_motion_t *m, xgo_regs_t *r)
     case XGO_MODE_SERVO:
         memcpy(q, m->servo_cmd_mdeg, sizeof q);
         step = servo_mode_step(m, r);
-        xgo_body_pose_stand(m->profile, &m->pose);
+        m->pose = m->stand;
         break;
     default: /* debug, calibration: hold */
         memcpy(q, m->servos.angle_mdeg, sizeof q);

@@ -1,0 +1,514 @@
+/*
+ * The board moves: registers -> modes, gait, body pose, actions, servos, IMU
+ * and battery, on virtual time (ticks). Each test drives the board through
+ * its register file exactly as frames from a host would (xgo_regs_write),
+ * and checks what a host would read back.
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "unity.h"
+#include "xgo/board.h"
+
+static xgo_board_t board;
+
+void setUp(void)
+{
+    xgo_board_init(&board, NULL);
+}
+
+void tearDown(void)
+{
+}
+
+static void wr(uint8_t addr, uint8_t v)
+{
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_write(&board.regs, addr, &v, 1));
+}
+
+static uint8_t rd(uint8_t addr)
+{
+    uint8_t v;
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_read(&board.regs, addr, 1, &v));
+    return v;
+}
+
+/* The float the vendor library's read_roll/pitch/yaw would decode. */
+static double rd_angle(uint8_t addr)
+{
+    uint8_t b[4];
+    float f;
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_read(&board.regs, addr, 4, b));
+    memcpy(&f, b, 4);
+    return f;
+}
+
+static void ticks(unsigned n)
+{
+    while (n--) {
+        xgo_board_tick(&board);
+    }
+}
+
+/* Vendor encoding of a value in [-limit, limit] (what xgolib sends). */
+static uint8_t vendor_byte(double v, double limit)
+{
+    if (v >= limit) return 255;
+    if (v <= -limit) return 0;
+    return (uint8_t)(int)(255.0 / (2 * limit) * (v + limit));
+}
+
+static int32_t joint(unsigned i)
+{
+    return board.motion.servos.angle_mdeg[i];
+}
+
+/* ------------------------------------------------------------ modes */
+
+static void test_mode_register_follows_the_group_written(void)
+{
+    TEST_ASSERT_EQUAL_HEX8(XGO_MODE_WHOLE_UNIT, rd(XGO_REG_MODE));
+    wr(XGO_REG_LEG1_Z, 0x90);
+    ticks(1);
+    TEST_ASSERT_EQUAL_HEX8(XGO_MODE_LEG, rd(XGO_REG_MODE));
+    wr(XGO_REG_SERVO_SPEED, 0x40);
+    ticks(1);
+    TEST_ASSERT_EQUAL_HEX8(XGO_MODE_SERVO, rd(XGO_REG_MODE));
+    wr(XGO_REG_UNLOAD, 0x00);
+    ticks(1);
+    TEST_ASSERT_EQUAL_HEX8(XGO_MODE_DEBUG, rd(XGO_REG_MODE));
+    wr(XGO_REG_VX, 0x7F);
+    ticks(1);
+    TEST_ASSERT_EQUAL_HEX8(XGO_MODE_WHOLE_UNIT, rd(XGO_REG_MODE));
+    wr(XGO_REG_PERIOD_X, 0x00);
+    ticks(1);
+    TEST_ASSERT_EQUAL_HEX8(XGO_MODE_WHOLE_UNIT, rd(XGO_REG_MODE));
+}
+
+static void test_dead_band_7f_and_80_both_mean_stop(void)
+{
+    TEST_ASSERT_EQUAL_INT32(0, xgo_signed_byte_to_value(0x7F, 250000));
+    TEST_ASSERT_EQUAL_INT32(0, xgo_signed_byte_to_value(0x80, 250000));
+    TEST_ASSERT_EQUAL_INT32(250000, xgo_signed_byte_to_value(0xFF, 250000));
+    TEST_ASSERT_EQUAL_INT32(-250000, xgo_signed_byte_to_value(0x00, 250000));
+    TEST_ASSERT_TRUE(xgo_signed_byte_to_value(0x81, 250000) > 0);
+    TEST_ASSERT_TRUE(xgo_signed_byte_to_value(0x7E, 250000) < 0);
+
+    wr(XGO_REG_VX, vendor_byte(20, 25));
+    ticks(1000);
+    TEST_ASSERT_FALSE(xgo_gait_is_standing(&board.motion.gait));
+    wr(XGO_REG_VX, vendor_byte(0, 25)); /* stop() sends 0x7F */
+    TEST_ASSERT_EQUAL_HEX8(0x7F, vendor_byte(0, 25));
+    ticks(XGO_GAIT_STOP_TICKS_MAX);
+    TEST_ASSERT_TRUE(xgo_gait_is_standing(&board.motion.gait));
+    TEST_ASSERT_EQUAL_INT32(0, board.motion.gait.vx_um_s);
+}
+
+/* ------------------------------------------------------------ whole unit */
+
+static void test_walking_forward_moves_stance_feet_backward(void)
+{
+    unsigned t, leg, seen = 0;
+    wr(XGO_REG_VX, vendor_byte(15, 25));
+    ticks(1000);
+    for (t = 0; t < 200; t++) {
+        int32_t before[4];
+        for (leg = 0; leg < 4; leg++) {
+            before[leg] = board.motion.gait.foot_um[leg][0];
+        }
+        ticks(1);
+        for (leg = 0; leg < 4; leg++) {
+            if (board.motion.gait.contact[leg] && board.motion.gait.foot_um[leg][2] == 0 &&
+                before[leg] != board.motion.gait.foot_um[leg][0]) {
+                TEST_ASSERT_TRUE(board.motion.gait.foot_um[leg][0] < before[leg]);
+                seen++;
+            }
+        }
+    }
+    TEST_ASSERT_GREATER_THAN_UINT(100, seen);
+    /* forward speed 15 (vendor units, cm/s) = 150 mm/s produced */
+    TEST_ASSERT_INT32_WITHIN(15000, 150000, board.motion.gait.vx_um_s);
+}
+
+static void test_turning_integrates_yaw(void)
+{
+    /* +50 deg/s for 4 s (after a 0.2 s ramp) -> about +190 deg, wrapped. */
+    double yaw;
+    wr(XGO_REG_VYAW, vendor_byte(50, 100));
+    ticks(4 * XGO_TICK_HZ);
+    yaw = rd_angle(XGO_REG_IMU_YAW);
+    /* expected: 50 deg/s * (4 s - 0.1 s average ramp loss) = 195 -> -165 */
+    TEST_ASSERT_DOUBLE_WITHIN(10.0, -165.0, yaw);
+    wr(XGO_REG_VYAW, 0x80);
+    ticks(XGO_GAIT_STOP_TICKS_MAX);
+    TEST_ASSERT_TRUE(xgo_gait_is_standing(&board.motion.gait));
+}
+
+static void test_body_attitude_shows_on_the_imu(void)
+{
+    wr(XGO_REG_BODY_ROLL, vendor_byte(10, 20));
+    wr(XGO_REG_BODY_PITCH, vendor_byte(-15, 22));
+    ticks(XGO_TICK_HZ);
+    TEST_ASSERT_DOUBLE_WITHIN(0.2, 10.0, rd_angle(XGO_REG_IMU_ROLL));
+    TEST_ASSERT_DOUBLE_WITHIN(0.2, -15.0, rd_angle(XGO_REG_IMU_PITCH));
+    /* one-byte view: 0x80 + 10 / (180/128) */
+    TEST_ASSERT_UINT8_WITHIN(1, 0x80 + 7, rd(XGO_REG_IMU_ROLL));
+}
+
+static void test_body_height_changes_the_legs(void)
+{
+    const int32_t knee_before = joint(XGO_JOINT_KNEE);
+    wr(XGO_REG_BODY_Z, 0x00); /* lowest: 75 mm */
+    ticks(XGO_TICK_HZ);
+    TEST_ASSERT_TRUE(joint(XGO_JOINT_KNEE) < knee_before - 10000); /* knee folds */
+    TEST_ASSERT_INT32_WITHIN(1, 75000, board.motion.pose.z_um);
+}
+
+static void test_periodic_roll_has_the_register_period(void)
+{
+    /* byte 255 -> 8 s; byte 1 -> ~1.5 s. Count zero crossings of roll. */
+    double prev;
+    unsigned t, crossings = 0;
+    wr(XGO_REG_PERIOD_ROLL, 1);
+    ticks(1);
+    prev = rd_angle(XGO_REG_IMU_ROLL);
+    for (t = 0; t < 15 * XGO_TICK_HZ; t++) {
+        double now;
+        ticks(1);
+        now = rd_angle(XGO_REG_IMU_ROLL);
+        if ((prev < 0) != (now < 0)) {
+            crossings++;
+        }
+        prev = now;
+    }
+    /* period = 1.5 + 6.5/255 s = 1.5255 s: 15 s hold 9.8 periods, 2 crossings each */
+    TEST_ASSERT_UINT_WITHIN(1, 20, crossings);
+    wr(XGO_REG_PERIOD_ROLL, 0);
+    ticks(XGO_TICK_HZ);
+    TEST_ASSERT_DOUBLE_WITHIN(0.01, 0.0, rd_angle(XGO_REG_IMU_ROLL));
+}
+
+static void test_self_stabilisation_levels_the_imu(void)
+{
+    xgo_board_set_ground_tilt(&board, 10000, -6000);
+    ticks(10);
+    TEST_ASSERT_DOUBLE_WITHIN(0.01, 10.0, rd_angle(XGO_REG_IMU_ROLL));
+    TEST_ASSERT_DOUBLE_WITHIN(0.01, -6.0, rd_angle(XGO_REG_IMU_PITCH));
+    wr(XGO_REG_IMU_MODE, 1);
+    ticks(XGO_TICK_HZ);
+    TEST_ASSERT_DOUBLE_WITHIN(0.1, 0.0, rd_angle(XGO_REG_IMU_ROLL));
+    TEST_ASSERT_DOUBLE_WITHIN(0.1, 0.0, rd_angle(XGO_REG_IMU_PITCH));
+    wr(XGO_REG_IMU_MODE, 0);
+    ticks(XGO_TICK_HZ);
+    TEST_ASSERT_DOUBLE_WITHIN(0.1, 10.0, rd_angle(XGO_REG_IMU_ROLL));
+}
+
+static void test_mark_time_steps_in_place(void)
+{
+    unsigned t;
+    int32_t top = 0;
+    wr(XGO_REG_MARK_TIME, 255); /* 35 mm */
+    for (t = 0; t < 2 * XGO_TICK_HZ; t++) {
+        ticks(1);
+        if (board.motion.gait.foot_um[0][2] > top) {
+            top = board.motion.gait.foot_um[0][2];
+        }
+    }
+    TEST_ASSERT_INT32_WITHIN(1000, 35000, top);
+    TEST_ASSERT_EQUAL_INT32(0, board.motion.gait.vx_um_s);
+}
+
+/* ------------------------------------------------------------ leg, servo, debug */
+
+static void test_leg_mode_puts_the_foot_where_commanded(void)
+{
+    const xgo_profile_t *p = xgo_profile_mini();
+    int32_t q[3];
+    xgo_vec3_t foot;
+    wr(XGO_REG_LEG2_X, 0xC0); /* leg 2 forward */
+    wr(XGO_REG_LEG2_Z, 0x40);
+    ticks(XGO_TICK_HZ);
+    q[0] = joint(3);
+    q[1] = joint(4);
+    q[2] = joint(5);
+    xgo_leg_fk(p, XGO_LEG_RF, q, &foot);
+    TEST_ASSERT_INT32_WITHIN(100, xgo_byte_to_foot(p, XGO_AXIS_X, 0xC0), foot.x);
+    TEST_ASSERT_INT32_WITHIN(100, 0, foot.y);
+    TEST_ASSERT_INT32_WITHIN(100, xgo_byte_to_foot(p, XGO_AXIS_Z, 0x40), foot.z);
+}
+
+static void test_servo_mode_reads_back_commanded_angles_at_register_speed(void)
+{
+    const xgo_profile_t *p = xgo_profile_mini();
+    const uint8_t cmd = 0x30;
+    const int32_t start = joint(0);
+    const int32_t goal = xgo_byte_to_joint(p, XGO_JOINT_KNEE, cmd);
+    unsigned t = 0;
+    wr(XGO_REG_SERVO_SPEED, 0); /* slowest: 10 deg/s = 20 mdeg per tick */
+    wr(XGO_REG_SERVO11, cmd);
+    ticks(1);
+    TEST_ASSERT_EQUAL_HEX8(XGO_MODE_SERVO, rd(XGO_REG_MODE));
+    TEST_ASSERT_INT32_WITHIN(40, 20, abs(joint(0) - start));
+    while (joint(0) != goal && t < 20 * XGO_TICK_HZ) {
+        ticks(1);
+        t++;
+    }
+    TEST_ASSERT_EQUAL_INT32(goal, joint(0));
+    TEST_ASSERT_EQUAL_HEX8(cmd, rd(XGO_REG_SERVO11));
+    /* other joints kept their angles */
+    TEST_ASSERT_UINT8_WITHIN(1, 0xBB, rd(XGO_REG_SERVO12));
+}
+
+static void test_unloaded_leg_holds_and_ignores_commands(void)
+{
+    int32_t held[3];
+    unsigned i;
+    wr(XGO_REG_UNLOAD, 0x12); /* unload leg 2 */
+    ticks(1);
+    for (i = 0; i < 3; i++) {
+        held[i] = joint(3 + i);
+    }
+    wr(XGO_REG_BODY_Z, 0x00);
+    wr(XGO_REG_SERVO21, 0x00);
+    ticks(XGO_TICK_HZ);
+    for (i = 0; i < 3; i++) {
+        TEST_ASSERT_EQUAL_INT32(held[i], joint(3 + i));
+    }
+    TEST_ASSERT_TRUE(joint(0) != 0 || joint(1) != 0); /* others still move */
+    wr(XGO_REG_UNLOAD, 0x22); /* reload leg 2 */
+    ticks(1);
+    wr(XGO_REG_SERVO21, 0x00);
+    ticks(XGO_TICK_HZ);
+    TEST_ASSERT_EQUAL_INT32(xgo_profile_mini()->joint_mdeg[0].lo, joint(3));
+}
+
+static void test_calibration_records_zero_offsets(void)
+{
+    uint32_t before = xgo_board_nv_changes(&board);
+    xgo_board_nv_t nv;
+    int32_t standing_hip = joint(1);
+    wr(XGO_REG_SET_ZERO, 1); /* outside calibration: ignored */
+    ticks(1);
+    TEST_ASSERT_EQUAL_HEX8(0, rd(XGO_REG_SET_ZERO));
+    TEST_ASSERT_EQUAL_UINT32(before, xgo_board_nv_changes(&board));
+    wr(XGO_REG_CALIBRATION, 1);
+    ticks(1);
+    TEST_ASSERT_EQUAL_HEX8(XGO_MODE_CALIBRATION, rd(XGO_REG_MODE));
+    wr(XGO_REG_SET_ZERO, 1);
+    TEST_ASSERT_EQUAL_HEX8(1, rd(XGO_REG_SET_ZERO));
+    ticks(1);
+    TEST_ASSERT_EQUAL_HEX8(0, rd(XGO_REG_SET_ZERO)); /* auto-clear */
+    TEST_ASSERT_EQUAL_UINT32(before + 1, xgo_board_nv_changes(&board));
+    xgo_board_get_nv(&board, &nv);
+    TEST_ASSERT_EQUAL_INT32(standing_hip, nv.zero_offset_mdeg[1]);
+    wr(XGO_REG_CALIBRATION, 0);
+    ticks(1);
+    TEST_ASSERT_EQUAL_HEX8(XGO_MODE_WHOLE_UNIT, rd(XGO_REG_MODE));
+}
+
+static void test_nv_data_round_trip_and_validation(void)
+{
+    xgo_board_nv_t nv, back;
+    memset(&nv, 0, sizeof nv);
+    memcpy(nv.bt_name, "Rex", 3);
+    nv.zero_offset_mdeg[5] = -1234;
+    TEST_ASSERT_TRUE(xgo_board_set_nv(&board, &nv));
+    xgo_board_get_nv(&board, &back);
+    TEST_ASSERT_EQUAL_MEMORY(&nv, &back, sizeof nv);
+    nv.bt_name[1] = (char)0xE7;
+    TEST_ASSERT_FALSE(xgo_board_set_nv(&board, &nv));
+    memset(nv.bt_name, 0, sizeof nv.bt_name);
+    TEST_ASSERT_FALSE(xgo_board_set_nv(&board, &nv));
+    memcpy(nv.bt_name, "A", 1);
+    nv.zero_offset_mdeg[0] = 400000;
+    TEST_ASSERT_FALSE(xgo_board_set_nv(&board, &nv));
+    xgo_board_get_nv(&board, &back);
+    TEST_ASSERT_EQUAL_MEMORY("Rex", back.bt_name, 3);
+}
+
+static void test_bluetooth_rename_counts_as_nv_change(void)
+{
+    const uint32_t before = xgo_board_nv_changes(&board);
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_write(&board.regs, 0x13, (const uint8_t *)"Rex", 3));
+    ticks(1);
+    TEST_ASSERT_EQUAL_UINT32(before + 1, xgo_board_nv_changes(&board));
+}
+
+static void test_standing_posture_stops_and_clears_motion(void)
+{
+    wr(XGO_REG_VX, 0xFF);
+    wr(XGO_REG_BODY_ROLL, 0xFF);
+    ticks(500);
+    wr(XGO_REG_STAND, 1);
+    ticks(1);
+    TEST_ASSERT_EQUAL_HEX8(0, rd(XGO_REG_STAND));
+    TEST_ASSERT_EQUAL_HEX8(0x80, rd(XGO_REG_VX));
+    TEST_ASSERT_EQUAL_HEX8(0x80, rd(XGO_REG_BODY_ROLL));
+    ticks(XGO_GAIT_STOP_TICKS_MAX);
+    TEST_ASSERT_TRUE(xgo_gait_is_standing(&board.motion.gait));
+}
+
+/* ------------------------------------------------------------ actions */
+
+static void test_action_reads_back_for_its_duration_then_zero(void)
+{
+    const uint32_t n = xgo_action_duration_ticks(XGO_ACTION_SIT);
+    TEST_ASSERT_EQUAL_UINT32(5u * XGO_TICK_HZ, n);
+    wr(XGO_REG_ACTION, XGO_ACTION_SIT);
+    ticks(1);
+    TEST_ASSERT_EQUAL_HEX8(XGO_ACTION_SIT, rd(XGO_REG_ACTION));
+    TEST_ASSERT_EQUAL_HEX8(XGO_MODE_ACTION, rd(XGO_REG_MODE));
+    ticks(n - 2);
+    TEST_ASSERT_EQUAL_HEX8(XGO_ACTION_SIT, rd(XGO_REG_ACTION));
+    ticks(1);
+    TEST_ASSERT_EQUAL_HEX8(0, rd(XGO_REG_ACTION));
+    TEST_ASSERT_EQUAL_HEX8(XGO_MODE_WHOLE_UNIT, rd(XGO_REG_MODE));
+}
+
+static void test_actions_move_the_body_and_end_standing(void)
+{
+    int32_t stand[XGO_SERVO_COUNT];
+    unsigned i, moved = 0;
+    memcpy(stand, board.motion.servos.angle_mdeg, sizeof stand);
+    wr(XGO_REG_ACTION, XGO_ACTION_LIE_DOWN);
+    ticks(xgo_action_duration_ticks(XGO_ACTION_LIE_DOWN) / 2);
+    for (i = 0; i < XGO_SERVO_COUNT; i++) {
+        moved += abs(board.motion.servos.angle_mdeg[i] - stand[i]) > 5000;
+    }
+    TEST_ASSERT_GREATER_THAN_UINT(0, moved);
+    ticks(xgo_action_duration_ticks(XGO_ACTION_LIE_DOWN));
+    for (i = 0; i < XGO_SERVO_COUNT; i++) {
+        TEST_ASSERT_INT32_WITHIN(1, stand[i], board.motion.servos.angle_mdeg[i]);
+    }
+}
+
+static void test_reset_restores_the_initial_table(void)
+{
+    static const uint8_t touched[] = {0x09, 0x30, 0x31, 0x32, 0x33, 0x36, 0x39, 0x3C, 0x3D, 0x61, 0x80};
+    uint8_t initial[256];
+    unsigned i;
+    memcpy(initial, board.regs.mem, sizeof initial);
+    for (i = 0; i < sizeof touched; i++) {
+        wr(touched[i], 1);
+    }
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_write(&board.regs, 0x13, (const uint8_t *)"Rex", 3));
+    ticks(300);
+    wr(XGO_REG_ACTION, 255);
+    ticks(1);
+    TEST_ASSERT_EQUAL_HEX8(255, rd(XGO_REG_ACTION));
+    for (i = 0; i < sizeof touched; i++) {
+        TEST_ASSERT_EQUAL_HEX8_MESSAGE(initial[touched[i]], rd(touched[i]), xgo_reg_name(touched[i]));
+    }
+    TEST_ASSERT_EQUAL_HEX8('R', rd(0x13)); /* the name is non-volatile */
+    ticks(XGO_TICK_HZ);
+    TEST_ASSERT_EQUAL_HEX8(0, rd(XGO_REG_ACTION));
+    TEST_ASSERT_TRUE(xgo_gait_is_standing(&board.motion.gait));
+}
+
+static void test_perform_mode_cycles_actions(void)
+{
+    wr(XGO_REG_PERFORM, 1);
+    ticks(1);
+    TEST_ASSERT_EQUAL_HEX8(xgo_action_next_in_cycle(0), rd(XGO_REG_ACTION));
+    ticks(xgo_action_duration_ticks(xgo_action_next_in_cycle(0)));
+    TEST_ASSERT_EQUAL_HEX8(xgo_action_next_in_cycle(xgo_action_next_in_cycle(0)), rd(XGO_REG_ACTION));
+    wr(XGO_REG_PERFORM, 0);
+    ticks(11 * XGO_TICK_HZ);
+    TEST_ASSERT_EQUAL_HEX8(0, rd(XGO_REG_ACTION));
+}
+
+/* ------------------------------------------------------------ battery, identity */
+
+static void test_battery_drains_faster_while_walking(void)
+{
+    xgo_board_t idle;
+    unsigned t;
+    xgo_board_init(&idle, NULL);
+    wr(XGO_REG_VX, 0xFF);
+    for (t = 0; t < 3u * 60u * XGO_TICK_HZ; t++) { /* 3 minutes */
+        xgo_board_tick(&board);
+        xgo_board_tick(&idle);
+    }
+    /* 3 min: idle 2.5 % (100 % / 120 min), walking 5 % (100 % / 60 min) */
+    TEST_ASSERT_EQUAL_UINT8(98, xgo_regs_get(&idle.regs, XGO_REG_BATTERY));
+    TEST_ASSERT_EQUAL_UINT8(95, rd(XGO_REG_BATTERY));
+}
+
+static void test_lite_profile_version_and_ranges(void)
+{
+    xgo_board_config_t cfg;
+    xgo_board_default_config(&cfg);
+    cfg.model = XGO_MODEL_LITE;
+    xgo_board_init(&board, &cfg);
+    ticks(1);
+    TEST_ASSERT_EQUAL_HEX8(0x01, rd(XGO_REG_VERSION));
+    wr(XGO_REG_BODY_PITCH, 0xFF);
+    ticks(XGO_TICK_HZ);
+    TEST_ASSERT_DOUBLE_WITHIN(0.2, 10.0, rd_angle(XGO_REG_IMU_PITCH)); /* Lite pitch limit 10 deg */
+}
+
+/* ------------------------------------------------------------ robustness */
+
+static uint32_t rng_state = 0x9E3779B9u;
+static uint32_t rng(void)
+{
+    rng_state ^= rng_state << 13;
+    rng_state ^= rng_state >> 17;
+    rng_state ^= rng_state << 5;
+    return rng_state;
+}
+
+static void test_random_commands_never_jump_joints_or_break_limits(void)
+{
+    static const uint8_t regs[] = {0x09, 0x20, 0x30, 0x31, 0x32, 0x33, 0x34, 0x35, 0x36, 0x37, 0x38,
+                                   0x39, 0x3A, 0x3B, 0x3C, 0x3D, 0x3E, 0x40, 0x42, 0x45, 0x4B, 0x50,
+                                   0x55, 0x5B, 0x5C, 0x5D, 0x61, 0x80, 0x81, 0x82, 0x03, 0x04};
+    const xgo_profile_t *p = xgo_profile_mini();
+    int32_t prev[XGO_SERVO_COUNT];
+    unsigned t, i;
+    memcpy(prev, board.motion.servos.angle_mdeg, sizeof prev);
+    for (t = 0; t < 200000; t++) {
+        if (rng() % 50 == 0) {
+            const uint8_t addr = regs[rng() % sizeof regs];
+            const uint8_t v = (uint8_t)rng();
+            (void)xgo_regs_write(&board.regs, addr, &v, 1); /* invalid ones are rejected */
+        }
+        ticks(1);
+        for (i = 0; i < XGO_SERVO_COUNT; i++) {
+            const int32_t a = board.motion.servos.angle_mdeg[i];
+            TEST_ASSERT_LESS_OR_EQUAL_INT32(XGO_JOINT_STEP_MAX_MDEG, abs(a - prev[i]));
+            TEST_ASSERT_TRUE(a >= p->joint_mdeg[i % 3].lo && a <= p->joint_mdeg[i % 3].hi);
+            prev[i] = a;
+        }
+    }
+}
+
+int main(void)
+{
+    UNITY_BEGIN();
+    RUN_TEST(test_mode_register_follows_the_group_written);
+    RUN_TEST(test_dead_band_7f_and_80_both_mean_stop);
+    RUN_TEST(test_walking_forward_moves_stance_feet_backward);
+    RUN_TEST(test_turning_integrates_yaw);
+    RUN_TEST(test_body_attitude_shows_on_the_imu);
+    RUN_TEST(test_body_height_changes_the_legs);
+    RUN_TEST(test_periodic_roll_has_the_register_period);
+    RUN_TEST(test_self_stabilisation_levels_the_imu);
+    RUN_TEST(test_mark_time_steps_in_place);
+    RUN_TEST(test_leg_mode_puts_the_foot_where_commanded);
+    RUN_TEST(test_servo_mode_reads_back_commanded_angles_at_register_speed);
+    RUN_TEST(test_unloaded_leg_holds_and_ignores_commands);
+    RUN_TEST(test_calibration_records_zero_offsets);
+    RUN_TEST(test_nv_data_round_trip_and_validation);
+    RUN_TEST(test_bluetooth_rename_counts_as_nv_change);
+    RUN_TEST(test_standing_posture_stops_and_clears_motion);
+    RUN_TEST(test_action_reads_back_for_its_duration_then_zero);
+    RUN_TEST(test_actions_move_the_body_and_end_standing);
+    RUN_TEST(test_reset_restores_the_initial_table);
+    RUN_TEST(test_perform_mode_cycles_actions);
+    RUN_TEST(test_battery_drains_faster_while_walking);
+    RUN_TEST(test_lite_profile_version_and_ranges);
+    RUN_TEST(test_random_commands_never_jump_joints_or_break_limits);
+    return UNITY_END();
+}
