@@ -89,10 +89,10 @@ typedef enum xgo_pace_e { XGO_PACE_NORMAL = 0, XGO_PACE_SLOW = 1, XGO_PACE_HIGH 
 #define XGO_GAIT_MAX_HEIGHT_UM 35000 /* mark-time step height clamp */
 
 /* Half-stride budget the cadence is fitted to (per leg, around its stance
- * point); y grows with the yaw rate: 16 mm + 14 mm * |w| / (100 deg/s),
+ * point); y grows with the yaw rate: 16.5 mm + 14 mm * |w| / (100 deg/s),
  * the yaw share saturating at 100 deg/s. */
 #define XGO_GAIT_HALF_STRIDE_X_UM 32000
-#define XGO_GAIT_HALF_STRIDE_Y_UM 16000
+#define XGO_GAIT_HALF_STRIDE_Y_UM 16500
 #define XGO_GAIT_YAW_HALF_STRIDE_Y_UM 14000
 #define XGO_GAIT_YAW_REF_MDEG_S 100000
 
@@ -137,18 +137,24 @@ typedef struct xgo_gait_s {
     int32_t pos_q8[XGO_LEG_COUNT][2];  /* feet x, y in 1/256 um */
     int32_t lift_q8[XGO_LEG_COUNT][2]; /* where the current swing started */
     int32_t swing_height_um[XGO_LEG_COUNT]; /* latched at lift-off */
+    int32_t reach_y_um[XGO_LEG_COUNT]; /* y reach of a planted foot: set at
+                                          touchdown, only grows in stance */
     uint8_t swinging[XGO_LEG_COUNT];
     uint32_t phase;      /* master phase, 2^32 = one cycle */
     uint32_t rate;       /* phase advance of the last tick */
     uint32_t rate_base;  /* nominal rate, slewed after pace/gait changes */
     uint8_t type;        /* gait table in use */
     uint8_t standing;    /* 1 = stopped, four feet at stance */
-    int32_t v_ramp[3];   /* ramped vx, vy (um/s), vyaw (mdeg/s) */
+    uint8_t brake;       /* slowing down until a pending gait switch fits */
+    int32_t v_ramp[3];   /* produced vx, vy (um/s), vyaw (mdeg/s) */
 
     /* ---- diagnostics ---- */
     uint32_t ticks;           /* ticks since init */
     uint32_t limited_ticks;   /* ticks with the speed limited (cadence cap) */
     uint32_t boosted_ticks;   /* ticks with the cadence raised by a transient */
+    uint32_t governed_ticks;  /* ticks where planted feet held back the ramp */
+    uint32_t outside_ticks;   /* ticks where a planted foot's predicted end was
+                                 (by rounding) just outside its reach */
     uint32_t clamped_ticks;   /* ticks where a stance foot hit the reach box */
     uint32_t switches;        /* gait table switches performed */
 } xgo_gait_t;
