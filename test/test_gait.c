@@ -51,16 +51,24 @@ static xgo_gait_command_t command(int32_t vx_mm_s, int32_t vy_mm_s, int32_t yaw_
 /* ------------------------------------------------------------ invariants */
 
 /* Largest values seen over the whole run (reported at the end). */
-static double worst_step_um;
+static double worst_step_trot_um, worst_step_walk_um;
 static double worst_dx_um, worst_dy_um, worst_dy_noyaw_um;
 static double worst_speed_err_pct, worst_yaw_err_pct;
+static double worst_odometry_um;
 static uint32_t worst_stop_ticks;
 static int32_t worst_z_um;
 
-/* Checks that hold at every tick, given the previous published feet. */
-static void check_tick(int32_t prev[XGO_LEG_COUNT][3], double y_box_um, int yaw_seen)
+static int trot_family(uint8_t type)
+{
+    return type == XGO_GAIT_TROT || type == XGO_GAIT_SLOW_TROT;
+}
+
+/* Checks that hold at every tick, given the feet published before it. */
+static void check_tick(int32_t prev[XGO_LEG_COUNT][3], const uint8_t prev_contact[XGO_LEG_COUNT],
+                       double y_box_um, int yaw_seen)
 {
     int leg;
+    double w = g.vyaw_mdeg_s * PI / 180000.0; /* rad/s */
     for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
         double dx = g.foot_um[leg][0] - prev[leg][0];
         double dy = g.foot_um[leg][1] - prev[leg][1];
@@ -68,8 +76,9 @@ static void check_tick(int32_t prev[XGO_LEG_COUNT][3], double y_box_um, int yaw_
         double step = sqrt(dx * dx + dy * dy + dz * dz);
         double ox = fabs((double)(g.foot_um[leg][0] - k_stance[leg][0]));
         double oy = fabs((double)(g.foot_um[leg][1] - k_stance[leg][1]));
-        if (step > worst_step_um) {
-            worst_step_um = step;
+        double *worst_step = trot_family(g.type) ? &worst_step_trot_um : &worst_step_walk_um;
+        if (step > *worst_step) {
+            *worst_step = step;
         }
         if (ox > worst_dx_um) {
             worst_dx_um = ox;
@@ -80,7 +89,8 @@ static void check_tick(int32_t prev[XGO_LEG_COUNT][3], double y_box_um, int yaw_
         if (g.foot_um[leg][2] > worst_z_um) {
             worst_z_um = g.foot_um[leg][2];
         }
-        TEST_ASSERT_TRUE_MESSAGE(step <= XGO_GAIT_MAX_STEP_UM, "foot moved more than the bound in one tick");
+        TEST_ASSERT_TRUE_MESSAGE(step <= (trot_family(g.type) ? XGO_GAIT_MAX_STEP_TROT_UM : XGO_GAIT_MAX_STEP_UM),
+                                 "foot moved more than the bound in one tick");
         TEST_ASSERT_TRUE_MESSAGE(ox <= XGO_GAIT_REACH_X_UM, "foot outside the x reach");
         TEST_ASSERT_TRUE_MESSAGE(oy <= y_box_um, "foot outside the y reach");
         TEST_ASSERT_TRUE_MESSAGE(g.foot_um[leg][2] >= 0 && g.foot_um[leg][2] <= XGO_GAIT_MAX_HEIGHT_UM,
@@ -88,15 +98,28 @@ static void check_tick(int32_t prev[XGO_LEG_COUNT][3], double y_box_um, int yaw_
         if (g.contact[leg]) {
             TEST_ASSERT_EQUAL_INT32_MESSAGE(0, g.foot_um[leg][2], "stance foot off the ground");
         }
+        if (g.contact[leg] && prev_contact[leg]) {
+            /* Odometry: a planted foot moves exactly as the published body
+             * velocity says, -(v + w x p) dt (to the um rounding). */
+            double ex = dx + (g.vx_um_s - w * prev[leg][1]) * DT;
+            double ey = dy + (g.vy_um_s + w * prev[leg][0]) * DT;
+            double e = sqrt(ex * ex + ey * ey);
+            if (e > worst_odometry_um) {
+                worst_odometry_um = e;
+            }
+            TEST_ASSERT_TRUE_MESSAGE(e <= 2.0, "planted foot disagrees with the published velocity");
+        }
     }
 }
 
 static void tick_checked(const xgo_gait_command_t *c, double y_box_um, int yaw_seen)
 {
     int32_t prev[XGO_LEG_COUNT][3];
+    uint8_t prev_contact[XGO_LEG_COUNT];
     memcpy(prev, g.foot_um, sizeof prev);
+    memcpy(prev_contact, g.contact, sizeof prev_contact);
     xgo_gait_tick(&g, c);
-    check_tick(prev, y_box_um, yaw_seen);
+    check_tick(prev, prev_contact, y_box_um, yaw_seen);
 }
 
 #define Y_BOX_YAW ((double)(XGO_GAIT_REACH_Y_UM + XGO_GAIT_YAW_REACH_Y_UM))
@@ -612,6 +635,58 @@ static void test_gait_switch_while_moving(void)
     }
 }
 
+/* Switching trot <-> walk at full speed: the body brakes (bounded
+ * deceleration) until the planted feet can carry the new timing, switches
+ * within half a second, and speeds up again. */
+static void test_gait_switch_at_full_speed_brakes_smoothly(void)
+{
+    static const uint8_t pairs[][2] = {
+        { XGO_GAIT_TROT, XGO_GAIT_WALK }, { XGO_GAIT_WALK, XGO_GAIT_TROT },
+        { XGO_GAIT_SLOW_TROT, XGO_GAIT_HIGH_WALK }, { XGO_GAIT_HIGH_WALK, XGO_GAIT_SLOW_TROT },
+    };
+    unsigned p;
+    for (p = 0; p < sizeof pairs / sizeof pairs[0]; ++p) {
+        xgo_gait_command_t c = command(250, 180, 100, pairs[p][0], XGO_PACE_NORMAL);
+        int i;
+        setUp();
+        run(&c, 1000);
+        TEST_ASSERT_EQUAL_INT32(250000, g.vx_um_s);
+        c.type = pairs[p][1];
+        for (i = 0; i < 250 && g.type != pairs[p][1]; ++i) {
+            int32_t pv = g.vx_um_s;
+            run(&c, 1);
+            TEST_ASSERT_INT32_WITHIN(XGO_GAIT_ACCEL_UM_S2 / 500, pv, g.vx_um_s);
+        }
+        TEST_ASSERT_EQUAL_UINT8(pairs[p][1], g.type);
+        run(&c, 600);
+        TEST_ASSERT_EQUAL_INT32(250000, g.vx_um_s);
+        TEST_ASSERT_EQUAL_INT32(180000, g.vy_um_s);
+        TEST_ASSERT_EQUAL_INT32(100000, g.vyaw_mdeg_s);
+    }
+}
+
+/* Beyond the vendor ranges the command is scaled down as a whole (its
+ * direction and curvature kept), reported in the published velocity. */
+static void test_speed_limited_beyond_vendor_ranges(void)
+{
+    xgo_gait_command_t c = command(500, 360, 200, XGO_GAIT_WALK, XGO_PACE_NORMAL);
+    double k;
+    run(&c, 1500);
+    TEST_ASSERT_GREATER_THAN_UINT32(0, g.limited_ticks);
+    TEST_ASSERT_TRUE(g.vx_um_s < 500000 && g.vx_um_s > 250000);
+    k = g.vx_um_s / 500000.0;
+    TEST_ASSERT_DOUBLE_WITHIN(0.002, k, g.vy_um_s / 360000.0);
+    TEST_ASSERT_DOUBLE_WITHIN(0.002, k, g.vyaw_mdeg_s / 200000.0);
+    TEST_ASSERT_EQUAL_UINT32(0, g.clamped_ticks);
+    /* absurd values are clamped, then limited */
+    c = command(100000, -100000, 100000, XGO_GAIT_TROT, XGO_PACE_HIGH);
+    setUp();
+    run(&c, 1500);
+    TEST_ASSERT_TRUE(g.vx_um_s > 0 && g.vx_um_s <= XGO_GAIT_VX_CLAMP_UM_S);
+    TEST_ASSERT_EQUAL_UINT32(0, g.clamped_ticks);
+    stop_from(&c, 1500);
+}
+
 /* ------------------------------------------------------------ random commands */
 
 static uint32_t rng_state;
@@ -693,12 +768,15 @@ int main(void)
     RUN_TEST(test_pace_sets_step_frequency);
     RUN_TEST(test_out_of_range_selects_defaults);
     RUN_TEST(test_gait_switch_while_moving);
+    RUN_TEST(test_gait_switch_at_full_speed_brakes_smoothly);
+    RUN_TEST(test_speed_limited_beyond_vendor_ranges);
     RUN_TEST(test_random_commands_no_jumps);
     RUN_TEST(test_random_commands_without_yaw_keep_vendor_box);
-    printf("gait: worst speed error %.2f %%, yaw-rate error %.2f %%; worst stop %u ticks (%.2f s); "
-           "largest foot step %.0f um/tick; largest offset x %.0f um, y %.0f um (no yaw), "
-           "y %.0f um (with yaw); highest foot %d um\n",
+    printf("gait: worst speed error %.3f %%, yaw-rate error %.3f %%; worst stop %u ticks (%.2f s); "
+           "largest foot step %.0f um/tick (trots), %.0f um/tick (walks); largest offset x %.0f um, "
+           "y %.0f um (no yaw), y %.0f um (with yaw); highest foot %d um; odometry residual %.2f um\n",
            worst_speed_err_pct, worst_yaw_err_pct, (unsigned)worst_stop_ticks, worst_stop_ticks * DT,
-           worst_step_um, worst_dx_um, worst_dy_noyaw_um, worst_dy_um, (int)worst_z_um);
+           worst_step_trot_um, worst_step_walk_um, worst_dx_um, worst_dy_noyaw_um, worst_dy_um, (int)worst_z_um,
+           worst_odometry_um);
     return UNITY_END();
 }

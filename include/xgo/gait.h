@@ -50,16 +50,13 @@
 
 #include <stdint.h>
 
+/* Legs 1..4 = indices 0..3: XGO_LEG_LF, _RF, _RH, _LH and XGO_LEG_COUNT, from
+ * the one place legs are numbered (only the enum is used here). */
+#include "xgo/profile.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
-
-/* Legs 1..4 = indices 0..3 (vendor numbering). */
-#define XGO_LEG_COUNT 4
-#define XGO_LEG_LF 0 /* left front */
-#define XGO_LEG_RF 1 /* right front */
-#define XGO_LEG_RH 2 /* right hind */
-#define XGO_LEG_LH 3 /* left hind */
 
 /* Register 0x09. */
 typedef enum xgo_gait_type_e {
@@ -101,14 +98,16 @@ typedef enum xgo_pace_e { XGO_PACE_NORMAL = 0, XGO_PACE_SLOW = 1, XGO_PACE_HIGH 
 #define XGO_GAIT_REACH_Y_UM 18000
 #define XGO_GAIT_YAW_REACH_Y_UM 14000
 
-/* Largest displacement of any foot in one tick (3-D, any command sequence);
- * the derivation is in docs/gait.md, the measured maximum in the tests. */
-#define XGO_GAIT_MAX_STEP_UM 5000
+/* Largest displacement of any foot in one tick (3-D, any command sequence;
+ * derivation in docs/gait.md, measured maxima in test/test_gait.c): the walks
+ * at their fastest cadence, and the trots (trot, slow trot, mark time). */
+#define XGO_GAIT_MAX_STEP_UM 6000
+#define XGO_GAIT_MAX_STEP_TROT_UM 3000
 
 /* Ticks from a zero command (mark time off) to standing, from any state:
- * the ramp down (<= 0.5 s at the vendor maxima; 1 s at the clamps) plus
- * at most one gait cycle at the slowest cadence (1.2 s), plus a switch. */
-#define XGO_GAIT_STOP_TICKS_MAX 1500u
+ * the ramp down (250 ticks from the vendor maxima, 500 from the clamps)
+ * plus at most 1.25 cycles at the slowest cadence (slow walk, 1.2 s). */
+#define XGO_GAIT_STOP_TICKS_MAX 1300u
 
 /* ------------------------------------------------------------ types */
 
@@ -147,6 +146,15 @@ typedef struct xgo_gait_s {
     uint8_t standing;    /* 1 = stopped, four feet at stance */
     uint8_t brake;       /* slowing down until a pending gait switch fits */
     int32_t v_ramp[3];   /* produced vx, vy (um/s), vyaw (mdeg/s) */
+
+    /* ---- caches (pure functions of the keys; save work in steady state) ---- */
+    int32_t cache_cmd[3];      /* command the speed limit was computed for */
+    int32_t cache_lambda_q16;  /* its scale factor (65536 = not limited) */
+    int32_t cache_v[3];        /* velocity the fitted cadence is for */
+    uint32_t cache_rate_base;
+    uint32_t cache_rate_fit;
+    uint8_t cache_cmd_type;
+    uint8_t cache_v_type;
 
     /* ---- diagnostics ---- */
     uint32_t ticks;           /* ticks since init */

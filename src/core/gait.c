@@ -105,6 +105,15 @@ uint32_t xgo_gait_duty_pct(uint8_t type)
 
 /* ------------------------------------------------------------ helpers */
 
+/* (a * b) / 2^q rounded, 1 <= q <= 31: xgo_mul_q without the saturation,
+ * inlined (it is the hot spot). Every use below has |a * b| < 2^56 and a
+ * result well inside int32 by the clamps on the command (twice the vendor
+ * ranges), the stance (+-200 mm) and the reach box. */
+static inline int32_t mul_q(int32_t a, int32_t b, unsigned q)
+{
+    return (int32_t)(((int64_t)a * b + ((int64_t)1 << (q - 1u))) >> q);
+}
+
 static int32_t clamp32(int32_t v, int32_t lo, int32_t hi)
 {
     return v < lo ? lo : (v > hi ? hi : v);
@@ -134,8 +143,8 @@ static uint32_t fit_rate(uint32_t speed, uint32_t h, uint32_t k_rate)
 static void foot_velocity(const int32_t v[2], int32_t w_q24, int32_t x_um, int32_t y_um,
                           int32_t out[2])
 {
-    out[0] = v[0] - xgo_mul_q(w_q24, y_um, 24u);
-    out[1] = v[1] + xgo_mul_q(w_q24, x_um, 24u);
+    out[0] = v[0] - mul_q(w_q24, y_um, 24u);
+    out[1] = v[1] + mul_q(w_q24, x_um, 24u);
 }
 
 static void publish(xgo_gait_t *g, const int32_t z_um[XGO_LEG_COUNT])
@@ -156,6 +165,16 @@ static int at_stance(const xgo_gait_t *g, int leg)
 }
 
 /* ------------------------------------------------------------ API */
+
+static void invalidate_caches(xgo_gait_t *g)
+{
+    g->cache_cmd[0] = g->cache_cmd[1] = g->cache_cmd[2] = INT32_MIN;
+    g->cache_v[0] = g->cache_v[1] = g->cache_v[2] = INT32_MIN;
+    g->cache_cmd_type = g->cache_v_type = 0xFFu;
+    g->cache_lambda_q16 = 65536;
+    g->cache_rate_base = 0;
+    g->cache_rate_fit = 0;
+}
 
 void xgo_gait_init(xgo_gait_t *g, const int32_t stance_um[XGO_LEG_COUNT][3])
 {
@@ -180,6 +199,7 @@ void xgo_gait_init(xgo_gait_t *g, const int32_t stance_um[XGO_LEG_COUNT][3])
     g->v_ramp[0] = g->v_ramp[1] = g->v_ramp[2] = 0;
     g->vx_um_s = g->vy_um_s = g->vyaw_mdeg_s = 0;
     g->brake = 0;
+    invalidate_caches(g);
     g->ticks = 0;
     g->governed_ticks = 0;
     g->outside_ticks = 0;
@@ -271,7 +291,7 @@ typedef struct tick_ctx_s {
 
 static int32_t yaw_q24(int32_t w_mdeg_s)
 {
-    return xgo_mul_q(w_mdeg_s, K_MDEG_TO_RAD_Q24_Q16, 16u);
+    return mul_q(w_mdeg_s, K_MDEG_TO_RAD_Q24_Q16, 16u);
 }
 
 /* Half the time (s, Q16) a planted foot with r phase left stays down at the
@@ -292,8 +312,8 @@ static void stance_midpoint(const xgo_gait_t *g, int leg, const int32_t v[2], in
     int32_t px = g->pos_q8[leg][0] >> 8;
     int32_t py = g->pos_q8[leg][1] >> 8;
     foot_velocity(v, w_q24, px, py, f);
-    q[0] = px - xgo_mul_q(f[0], (int32_t)half_q16, 16u);
-    q[1] = py - xgo_mul_q(f[1], (int32_t)half_q16, 16u);
+    q[0] = px - mul_q(f[0], (int32_t)half_q16, 16u);
+    q[1] = py - mul_q(f[1], (int32_t)half_q16, 16u);
 }
 
 /* Largest step lambda (Q16) from base towards prop that every stance foot
@@ -371,13 +391,13 @@ static void touchdown_q8(const xgo_gait_t *g, const tick_ctx_t *x, int leg, int3
 {
     int32_t f[2];
     int32_t wf[2];
-    int32_t tau2 = xgo_mul_q((int32_t)x->tau_q16, (int32_t)x->tau_q16, 17u); /* tau^2 / 2 */
+    int32_t tau2 = mul_q((int32_t)x->tau_q16, (int32_t)x->tau_q16, 17u); /* tau^2 / 2 */
     int c;
     foot_velocity(x->vel, x->w_q24, g->stance_um[leg][0], g->stance_um[leg][1], f);
-    wf[0] = -xgo_mul_q(x->w_q24, f[1], 24u);
-    wf[1] = xgo_mul_q(x->w_q24, f[0], 24u);
+    wf[0] = -mul_q(x->w_q24, f[1], 24u);
+    wf[1] = mul_q(x->w_q24, f[0], 24u);
     for (c = 0; c < 2; ++c) {
-        td[c] = (g->stance_um[leg][c] + xgo_mul_q(f[c], (int32_t)x->tau_q16, 16u) + xgo_mul_q(wf[c], tau2, 16u)) *
+        td[c] = (g->stance_um[leg][c] + mul_q(f[c], (int32_t)x->tau_q16, 16u) + mul_q(wf[c], tau2, 16u)) *
                 256;
     }
 }
@@ -413,18 +433,18 @@ static uint32_t fitted_rate(const xgo_gait_t *g, const gait_table_t *t, const in
         uint32_t q = (uint32_t)(((uint64_t)abs_u(w_q24) * K_TURN) >> 32);
         rate = max_u(rate, (uint32_t)(((uint64_t)q * t->k_rate) >> 11));
     }
-    if (w_q24 == 0 || rate > t->rate_max) {
-        return rate;
+    if (w_q24 == 0 || rate > t->rate_max || rate < (1u << 16)) {
+        return rate; /* no yaw, hopeless, or too slow to matter */
     }
     tau = t->k_tau / (rate >> 8);
-    tau2 = xgo_mul_q((int32_t)tau, (int32_t)tau, 17u);
+    tau2 = mul_q((int32_t)tau, (int32_t)tau, 17u);
     for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
-        uint32_t wfx = abs_u(xgo_mul_q(w_q24, f[leg][1], 24u));
-        uint32_t wfy = abs_u(xgo_mul_q(w_q24, f[leg][0], 24u));
-        ext_x = max_u(ext_x, (uint32_t)xgo_mul_q((int32_t)abs_u(f[leg][0]), (int32_t)tau, 16u) +
-                                 (uint32_t)xgo_mul_q((int32_t)wfx, tau2, 16u));
-        ext_y = max_u(ext_y, (uint32_t)xgo_mul_q((int32_t)abs_u(f[leg][1]), (int32_t)tau, 16u) +
-                                 (uint32_t)xgo_mul_q((int32_t)wfy, tau2, 16u));
+        uint32_t wfx = abs_u(mul_q(w_q24, f[leg][1], 24u));
+        uint32_t wfy = abs_u(mul_q(w_q24, f[leg][0], 24u));
+        ext_x = max_u(ext_x, (uint32_t)mul_q((int32_t)abs_u(f[leg][0]), (int32_t)tau, 16u) +
+                                 (uint32_t)mul_q((int32_t)wfx, tau2, 16u));
+        ext_y = max_u(ext_y, (uint32_t)mul_q((int32_t)abs_u(f[leg][1]), (int32_t)tau, 16u) +
+                                 (uint32_t)mul_q((int32_t)wfy, tau2, 16u));
     }
     /* extents are < 2^19 um: Q12 ratios fit 32 bits */
     ratio = max_u((ext_x << 12) / hx, (ext_y << 12) / hy);
@@ -495,13 +515,24 @@ void xgo_gait_tick(xgo_gait_t *g, const xgo_gait_command_t *cmd)
         target[0] = target[1] = target[2] = 0;
     }
     hx = XGO_GAIT_HALF_STRIDE_X_UM;
-    rate_fit = fitted_rate(g, t, target, yaw_q24(target[2]), hx, half_stride_y(target[2]), g->rate_base);
-    if (rate_fit > t->rate_max) {
-        /* Even the fastest cadence cannot fit the command: scale it down as
-         * a whole (the fitted cadence is proportional to the speed). */
-        int32_t lambda_q16 = (int32_t)(((uint64_t)t->rate_max << 16) / rate_fit);
+    if (target[0] != g->cache_cmd[0] || target[1] != g->cache_cmd[1] || target[2] != g->cache_cmd[2] ||
+        g->type != g->cache_cmd_type) {
+        /* New command (or table): does its stride fit at the fastest cadence? */
+        g->cache_cmd[0] = target[0];
+        g->cache_cmd[1] = target[1];
+        g->cache_cmd[2] = target[2];
+        g->cache_cmd_type = g->type;
+        g->cache_lambda_q16 = 65536;
+        rate_fit = fitted_rate(g, t, target, yaw_q24(target[2]), hx, half_stride_y(target[2]), 0u);
+        if (rate_fit > t->rate_max) {
+            /* No: scale the command down as a whole (the fitted cadence is
+             * proportional to the speed). */
+            g->cache_lambda_q16 = (int32_t)(((uint64_t)t->rate_max << 16) / rate_fit);
+        }
+    }
+    if (g->cache_lambda_q16 < 65536) {
         for (c = 0; c < 3; ++c) {
-            target[c] = (int32_t)(((int64_t)target[c] * lambda_q16) / 65536);
+            target[c] = (int32_t)(((int64_t)target[c] * g->cache_lambda_q16) / 65536);
         }
         g->limited_ticks++;
     }
@@ -514,7 +545,7 @@ void xgo_gait_tick(xgo_gait_t *g, const xgo_gait_command_t *cmd)
             g->reach_y_um[leg] = ry;
         }
     }
-    {
+    if (prop[0] != g->v_ramp[0] || prop[1] != g->v_ramp[1] || prop[2] != g->v_ramp[2]) {
         /* Planted feet must be able to absorb the change before lifting. */
         int outside = 0;
         int32_t lambda = governor_lambda(g, t, g->phase, g->v_ramp, prop, &outside);
@@ -547,10 +578,20 @@ void xgo_gait_tick(xgo_gait_t *g, const xgo_gait_command_t *cmd)
             g->rate_base = nominal;
         }
     }
-    rate_fit = fitted_rate(g, t, x.vel, x.w_q24, hx, hy, g->rate_base);
-    if (rate_fit > t->rate_max) {
-        rate_fit = t->rate_max;
+    if (g->v_ramp[0] != g->cache_v[0] || g->v_ramp[1] != g->cache_v[1] || g->v_ramp[2] != g->cache_v[2] ||
+        g->type != g->cache_v_type || g->rate_base != g->cache_rate_base) {
+        g->cache_v[0] = g->v_ramp[0];
+        g->cache_v[1] = g->v_ramp[1];
+        g->cache_v[2] = g->v_ramp[2];
+        g->cache_v_type = g->type;
+        g->cache_rate_base = g->rate_base;
+        rate_fit = fitted_rate(g, t, x.vel, x.w_q24, hx, hy, g->rate_base);
+        if (rate_fit > t->rate_max) {
+            rate_fit = t->rate_max;
+        }
+        g->cache_rate_fit = rate_fit;
     }
+    rate_fit = g->cache_rate_fit;
     x.tau_q16 = t->k_tau / (rate_fit >> 8);
 
     /* Transient rule: every planted foot must reach its lift-off before it
@@ -618,7 +659,7 @@ void xgo_gait_tick(xgo_gait_t *g, const xgo_gait_command_t *cmd)
      * lift-off event of a front leg with all four feet down, entering the new
      * table at that leg's lift-off phase, if the planted feet can carry the
      * current velocity under the new timing; else slow down and retry. */
-    if (want_type != g->type) {
+    if (want_type != g->type && !resting) { /* stopping: switch once standing */
         const gait_table_t *n = &k_tables[want_type];
         if (n->timing == t->timing) {
             g->type = want_type;
@@ -671,7 +712,7 @@ void xgo_gait_tick(xgo_gait_t *g, const xgo_gait_command_t *cmd)
             lim[1] = CLAMP_Y_UM * 256;
             for (c = 0; c < 2; ++c) {
                 int32_t nom = g->stance_um[leg][c] * 256;
-                int32_t p = g->pos_q8[leg][c] - xgo_mul_q(vf[leg][c], K_UMS_TO_Q8_TICK_Q31, 31u);
+                int32_t p = g->pos_q8[leg][c] - mul_q(vf[leg][c], K_UMS_TO_Q8_TICK_Q31, 31u);
                 if (p > nom + lim[c] || p < nom - lim[c]) {
                     p = clamp32(p, nom - lim[c], nom + lim[c]);
                     g->clamped_ticks++;
@@ -688,9 +729,9 @@ void xgo_gait_tick(xgo_gait_t *g, const xgo_gait_command_t *cmd)
             xgo_sincos(psi >> 1, &s, &co);       /* angle pi * psi */
             h = (XGO_Q30_ONE >> 1) - (co >> 1);  /* 0 -> 1, zero slope at both ends */
             for (c = 0; c < 2; ++c) {
-                g->pos_q8[leg][c] = g->lift_q8[leg][c] + xgo_mul_q(td[c] - g->lift_q8[leg][c], h, 30u);
+                g->pos_q8[leg][c] = g->lift_q8[leg][c] + mul_q(td[c] - g->lift_q8[leg][c], h, 30u);
             }
-            z_um[leg] = xgo_mul_q(g->swing_height_um[leg], xgo_mul_q(s, s, 30u), 30u);
+            z_um[leg] = mul_q(g->swing_height_um[leg], mul_q(s, s, 30u), 30u);
         }
     }
 
