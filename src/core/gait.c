@@ -12,11 +12,15 @@
  * The cadence is the largest of
  *   - the nominal rate of the gait and pace (slewed after changes),
  *   - the fit rate: the stride |v_foot| * T_stance must fit the half-stride
- *     budget (x: 32 mm; y: 16 mm + yaw share) around the stance point,
+ *     budget (x: 32 mm; y: 16.5 mm + yaw share) around the stance point,
+ *     with at most 30 degrees of body turn per stance and the stance arc's
+ *     second-order extent included,
  *   - the transient rate: every stance foot must reach its lift-off before
  *     it crosses the edge of that budget at its current velocity;
- * capped per gait. If the fit rate exceeds the cap the velocity is scaled
- * down (never inside the vendor ranges).
+ * capped per gait. If the fit rate of the command exceeds the cap the
+ * command is scaled down (never inside the vendor ranges). A governor lets
+ * the velocity ramp only as far as every planted foot can still finish its
+ * stance inside its reach box at the capped cadence.
  *
  * Integer arithmetic only. Positions are kept in 1/256 um so that slow
  * velocities integrate without rounding drift.
@@ -406,7 +410,7 @@ static void touchdown_q8(const xgo_gait_t *g, const tick_ctx_t *x, int leg, int3
  * `floor`:
  *   1. first order: |v_foot| * T_st <= 2 h per component, at the stance
  *      points;
- *   2. the body turns at most XGO_GAIT_MAX_TURN_MDEG per stance;
+ *   2. the body turns at most 30 degrees per stance (K_TURN);
  *   3. second order: under yaw the stance path is an arc; its half extent
  *      |f| tau + |w x f| tau^2 / 2 (tau = T_st / 2) must stay within h too:
  *      the rate of 1.-2. is raised by the worst ratio extent / h (one step
