@@ -19,7 +19,7 @@
 
 #include <stdint.h>
 
-#include "xgo/profile.h" /* before gait.h: it defines the leg enum */
+#include "xgo/profile.h"
 #include "xgo/actions.h"
 #include "xgo/gait.h"
 #include "xgo/kinematics.h"
