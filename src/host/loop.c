@@ -58,6 +58,11 @@ void xgo_host_loop_init(xgo_host_loop_t *l, xgo_board_t *board, const xgo_host_p
     l->next_tick_us = xgo_host_clock_us() + XGO_HOST_TICK_US;
 }
 
+void xgo_host_loop_set_state(xgo_host_loop_t *l, xgo_host_state_t *state)
+{
+    l->state = state;
+}
+
 static uint32_t xgo_host_loop_bytes_per_s(const xgo_host_loop_t *l)
 {
     uint32_t baud = xgo_host_pty_host_baud(l->pty);
@@ -303,6 +308,11 @@ int xgo_host_loop_run(xgo_host_loop_t *l)
         int ready;
 
         xgo_host_loop_run_ticks(l, now);
+        if (l->state != NULL) {
+            /* Cheap when nothing changed (a counter compare); a failure is
+             * reported once and retried at the next change or at exit. */
+            (void)xgo_host_state_sync(l->state, l->board, stderr);
+        }
         if (l->host_gone) {
             xgo_host_loop_probe_host(l, now);
         }

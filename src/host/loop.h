@@ -12,6 +12,7 @@
 
 #include "outq.h"
 #include "pty.h"
+#include "state_file.h"
 #include "trace.h"
 #include "xgo/board.h"
 
@@ -33,6 +34,7 @@ typedef struct xgo_host_loop_s {
     xgo_board_t *board;
     const xgo_host_pty_t *pty;
     xgo_host_trace_t *trace;   /* NULL without --trace */
+    xgo_host_state_t *state;   /* NULL without --state */
     int baud_pacing;
     volatile sig_atomic_t *stop; /* set by a signal handler */
 
@@ -56,6 +58,10 @@ typedef struct xgo_host_loop_s {
 
 void xgo_host_loop_init(xgo_host_loop_t *l, xgo_board_t *board, const xgo_host_pty_t *pty,
                         xgo_host_trace_t *trace, int baud_pacing, volatile sig_atomic_t *stop);
+
+/* Keep the board's non-volatile data saved in state while serving: checked
+ * after every round of ticks (a save happens only when it changed). */
+void xgo_host_loop_set_state(xgo_host_loop_t *l, xgo_host_state_t *state);
 
 /* Serves until *stop becomes non-zero. Returns 0, or -1 if poll() fails for
  * a reason other than a signal (message on stderr). */

@@ -3,7 +3,9 @@
  *
  * Start-up order matters to scripts: the pty is configured (raw) and the
  * --link symlink is in place before the slave path is printed, so whoever
- * reads the first stdout line can open the port at once.
+ * reads the first stdout line can open the port at once. The --state file is
+ * loaded before any of that, so a damaged one stops us before a pty or link
+ * exists.
  */
 #include <signal.h>
 #include <stdio.h>
@@ -14,6 +16,7 @@
 #include "loop.h"
 #include "options.h"
 #include "pty.h"
+#include "state_file.h"
 #include "trace.h"
 #include "xgo/board.h"
 
@@ -55,7 +58,8 @@ int main(int argc, char **argv)
     xgo_host_options_t opts;
     xgo_host_pty_t pty;
     xgo_host_trace_t trace;
-    char err[512];
+    xgo_host_state_t state;
+    char err[8192]; /* room for messages that quote two long paths */
     int replaced = 0;
     int rc;
 
@@ -78,6 +82,13 @@ int main(int argc, char **argv)
         perror("xgo-emu: sigaction");
         return XGO_EXIT_RUNTIME;
     }
+    xgo_board_init(&board, &opts.board);
+    xgo_board_set_ground_tilt(&board, opts.ground_roll_mdeg, opts.ground_pitch_mdeg);
+    if (opts.state_path != NULL &&
+        xgo_host_state_open(&state, opts.state_path, &board, err, sizeof err) != 0) {
+        fprintf(stderr, "xgo-emu: %s\n", err);
+        return XGO_EXIT_RUNTIME;
+    }
     if (xgo_host_pty_open(&pty, err, sizeof err) != 0) {
         fprintf(stderr, "xgo-emu: %s\n", err);
         return XGO_EXIT_RUNTIME;
@@ -93,19 +104,26 @@ int main(int argc, char **argv)
         }
     }
 
-    xgo_board_init(&board, &opts.board);
     xgo_host_trace_init(&trace, stderr, xgo_host_clock_us());
     if (opts.trace) {
         xgo_board_set_trace(&board, xgo_host_trace_event, &trace);
     }
     xgo_host_loop_init(&loop, &board, &pty, opts.trace ? &trace : NULL, opts.baud_pacing,
                        &xgo_host_stop_requested);
+    if (opts.state_path != NULL) {
+        xgo_host_loop_set_state(&loop, &state);
+    }
 
     printf("%s\n", pty.slave_path);
     fflush(stdout);
 
     rc = xgo_host_loop_run(&loop);
 
+    /* A change the board received but never saved is a runtime error: the
+     * user asked for it to be kept. */
+    if (opts.state_path != NULL && xgo_host_state_close(&state, &board, stderr) != 0) {
+        rc = -1;
+    }
     xgo_host_loop_print_counters(&loop, stderr);
     if (opts.link_path != NULL) {
         xgo_host_link_remove_if_ours(opts.link_path, pty.slave_path);

@@ -120,6 +120,81 @@ static xgo_host_apply_t xgo_host_apply_timeout(xgo_host_options_t *opts, const c
     return XGO_HOST_APPLY_OK;
 }
 
+static xgo_host_apply_t xgo_host_apply_state(xgo_host_options_t *opts, const char *value,
+                                              char *err, size_t err_size)
+{
+    if (value[0] == '\0') {
+        snprintf(err, err_size, "--state needs a non-empty FILE");
+        return XGO_HOST_APPLY_BAD_VALUE;
+    }
+    opts->state_path = value;
+    return XGO_HOST_APPLY_OK;
+}
+
+/* Largest ground tilt in mdeg: steeper is no ground a dog stands on (the
+ * core clamps there too). */
+#define XGO_HOST_MAX_TILT_MDEG 45000L
+
+/* Parses degrees "[+-]D[.D...]" into mdeg, rounded to nearest (ties away
+ * from zero), without floating point: exact, and no locale, "nan" or "1e3"
+ * surprises from strtod. *text is advanced past the number. */
+static int xgo_host_parse_mdeg(const char **text, long *mdeg)
+{
+    const char *p = *text;
+    long v = 0;
+    int neg = (*p == '-');
+    if (*p == '-' || *p == '+') {
+        p++;
+    }
+    if (*p < '0' || *p > '9') {
+        return 0;
+    }
+    for (; *p >= '0' && *p <= '9'; p++) {
+        v = v * 10 + (*p - '0');
+        if (v > XGO_HOST_MAX_TILT_MDEG) {
+            return 0; /* whole degrees: far out of range, and no overflow */
+        }
+    }
+    v *= 1000;
+    if (*p == '.') {
+        static const long k_place_mdeg[3] = {100, 10, 1};
+        int place = 0;
+        if (p[1] < '0' || p[1] > '9') {
+            return 0;
+        }
+        for (p++; *p >= '0' && *p <= '9'; p++, place++) {
+            if (place < 3) {
+                v += (*p - '0') * k_place_mdeg[place];
+            } else if (place == 3 && *p >= '5') {
+                v++; /* the 4th decimal rounds; later ones cannot change that */
+            }
+        }
+    }
+    *mdeg = neg ? -v : v;
+    *text = p;
+    return 1;
+}
+
+static xgo_host_apply_t xgo_host_apply_ground_tilt(xgo_host_options_t *opts, const char *value,
+                                                    char *err, size_t err_size)
+{
+    const char *p = value;
+    long roll = 0;
+    long pitch = 0;
+    if (!xgo_host_parse_mdeg(&p, &roll) || *p++ != ',' || !xgo_host_parse_mdeg(&p, &pitch) ||
+        *p != '\0' || roll < -XGO_HOST_MAX_TILT_MDEG || roll > XGO_HOST_MAX_TILT_MDEG ||
+        pitch < -XGO_HOST_MAX_TILT_MDEG || pitch > XGO_HOST_MAX_TILT_MDEG) {
+        snprintf(err, err_size,
+                 "--ground-tilt must be ROLL,PITCH in degrees within -45..45 (e.g. 5,-2.5), "
+                 "not '%s'",
+                 value);
+        return XGO_HOST_APPLY_BAD_VALUE;
+    }
+    opts->ground_roll_mdeg = (int32_t)roll;
+    opts->ground_pitch_mdeg = (int32_t)pitch;
+    return XGO_HOST_APPLY_OK;
+}
+
 static xgo_host_apply_t xgo_host_apply_help(xgo_host_options_t *opts, const char *value,
                                              char *err, size_t err_size)
 {
@@ -150,6 +225,10 @@ static const xgo_host_option_t xgo_host_option_table[] = {
     {"battery", 0, "PCT", "initial battery level 0..100 (default 100)", xgo_host_apply_battery},
     {"timeout-ms", 0, "N", "abandon a partial frame after N ms of silence, 0 = never (default 20)",
      xgo_host_apply_timeout},
+    {"state", 0, "FILE", "keep the Bluetooth name and zero offsets in FILE across runs",
+     xgo_host_apply_state},
+    {"ground-tilt", 0, "R,P", "ground tilted R deg in roll, P deg in pitch (e.g. 5,-2.5; max 45)",
+     xgo_host_apply_ground_tilt},
     {"help", 'h', NULL, "show this help and exit", xgo_host_apply_help},
     {"version", 0, NULL, "show the version and exit", xgo_host_apply_version},
 };

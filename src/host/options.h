@@ -18,6 +18,9 @@ typedef struct xgo_host_options_s {
     const char *link_path;    /* --link, NULL = no symlink */
     int trace;                /* --trace */
     int baud_pacing;          /* --baud-pacing */
+    const char *state_path;   /* --state, NULL = nothing kept across runs */
+    int32_t ground_roll_mdeg; /* --ground-tilt, 0,0 = level */
+    int32_t ground_pitch_mdeg;
     xgo_board_config_t board; /* --profile, --battery, --timeout-ms */
 } xgo_host_options_t;
 
