@@ -106,6 +106,8 @@ static int xgo_host_has_prefix(const char *line, size_t len, const char *prefix)
     return len >= n && memcmp(line, prefix, n) == 0;
 }
 
+/* Lower case only, as written: one spelling per file, so any flipped bit
+ * is caught. */
 static int xgo_host_hex_digit(char c)
 {
     if (c >= '0' && c <= '9') {
@@ -113,9 +115,6 @@ static int xgo_host_hex_digit(char c)
     }
     if (c >= 'a' && c <= 'f') {
         return c - 'a' + 10;
-    }
-    if (c >= 'A' && c <= 'F') {
-        return c - 'A' + 10;
     }
     return -1;
 }
@@ -141,7 +140,7 @@ static int xgo_host_check_crc(const char *text, size_t len, size_t *body_end, ch
     for (i = 0; i < 8; i++) {
         int d = xgo_host_hex_digit(line[6 + i]);
         if (d < 0) {
-            snprintf(err, err_size, "damaged (crc32 is not 8 hex digits)");
+            snprintf(err, err_size, "damaged (crc32 is not 8 lower-case hex digits)");
             return 0;
         }
         want = (want << 4) | (uint32_t)d;

@@ -1,0 +1,838 @@
+/*
+ * test_host_state.c - xgo-emu's --state file and --ground-tilt.
+ *
+ * Two halves:
+ *   - the state file module itself (src/host/state_file.c is compiled into
+ *     this test): exact format, every truncation and every bit flip refused,
+ *     field checks, atomic save, stale temporary files;
+ *   - xgo-emu end to end (XGO_EMU_PATH, fork/exec, a real pty): a round trip
+ *     of the Bluetooth name and the zero offsets across a restart, 200 kills
+ *     at random points while the host renames as fast as it can, a damaged
+ *     file refused, --ground-tilt parsing and the IMU levelling.
+ *
+ * Waits are real time and all bounded: a broken emulator fails the test
+ * instead of hanging it. About 15 s in all.
+ */
+#include <dirent.h>
+#include <errno.h>
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/types.h>
+#include <sys/wait.h>
+#include <termios.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "state_file.h"
+#include "unity.h"
+#include "xgo/board.h"
+#include "xgo/protocol.h"
+
+#ifndef XGO_EMU_PATH
+#error "XGO_EMU_PATH must name the xgo-emu executable"
+#endif
+
+#define EMU_START_TIMEOUT_MS 5000
+#define EMU_EXIT_TIMEOUT_MS 5000
+#define REPLY_TIMEOUT_MS 1000
+#define KILL_ROUNDS 200
+#define KILL_MAX_DELAY_US 30000
+
+static char g_dir[64];   /* fresh temporary directory per test */
+static char g_state[128]; /* g_dir/state */
+static char g_err[128];   /* g_dir/emu.err: the emulator's stderr */
+
+/* ------------------------------------------------------------ helpers */
+
+static long long now_us(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (long long)ts.tv_sec * 1000000 + ts.tv_nsec / 1000;
+}
+
+static void sleep_us(long us)
+{
+    struct timespec ts;
+    ts.tv_sec = us / 1000000;
+    ts.tv_nsec = (us % 1000000) * 1000L;
+    while (nanosleep(&ts, &ts) != 0 && errno == EINTR) {
+    }
+}
+
+/* Reads a whole (small) file; returns its length, -1 if it cannot be read. */
+static long read_file(const char *path, char *buf, size_t size)
+{
+    FILE *f = fopen(path, "rb");
+    size_t n;
+    if (f == NULL) {
+        return -1;
+    }
+    n = fread(buf, 1, size - 1, f);
+    fclose(f);
+    buf[n] = '\0';
+    return (long)n;
+}
+
+static void write_file(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "wb");
+    TEST_ASSERT_NOT_NULL(f);
+    TEST_ASSERT_EQUAL_UINT((unsigned)strlen(text), (unsigned)fwrite(text, 1, strlen(text), f));
+    TEST_ASSERT_EQUAL_INT(0, fclose(f));
+}
+
+/* CRC-32 as zlib computes it: an independent copy, to sign test files. */
+static uint32_t crc32_zlib(const char *p, size_t n)
+{
+    uint32_t crc = 0xFFFFFFFFu;
+    while (n-- > 0) {
+        int k;
+        crc ^= (uint8_t)*p++;
+        for (k = 0; k < 8; k++) {
+            crc = (crc & 1u) ? (crc >> 1) ^ 0xEDB88320u : crc >> 1;
+        }
+    }
+    return ~crc;
+}
+
+/* body + its "crc32=" line, into out. */
+static void sign(const char *body, char *out, size_t size)
+{
+    snprintf(out, size, "%scrc32=%08lx\n", body, (unsigned long)crc32_zlib(body, strlen(body)));
+}
+
+/* Names in g_dir that start with "state.tmp.". */
+static int count_tmp_files(char *last, size_t size)
+{
+    DIR *d = opendir(g_dir);
+    struct dirent *e;
+    int n = 0;
+    TEST_ASSERT_NOT_NULL(d);
+    while ((e = readdir(d)) != NULL) {
+        if (strncmp(e->d_name, "state.tmp.", 10) == 0) {
+            n++;
+            snprintf(last, size, "%s", e->d_name);
+        }
+    }
+    closedir(d);
+    return n;
+}
+
+static void remove_dir_contents(void)
+{
+    DIR *d = opendir(g_dir);
+    struct dirent *e;
+    char path[512];
+    if (d == NULL) {
+        return;
+    }
+    while ((e = readdir(d)) != NULL) {
+        if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0) {
+            continue;
+        }
+        snprintf(path, sizeof path, "%s/%s", g_dir, e->d_name);
+        if (unlink(path) != 0) {
+            rmdir(path);
+        }
+    }
+    closedir(d);
+}
+
+static xgo_board_nv_t nv_example(void)
+{
+    static const int32_t offsets[XGO_SERVO_COUNT] = {0, -1, 360000, -360000, 12345, 7,
+                                                     -98765, 100, 0, 2, -3, 45000};
+    xgo_board_nv_t nv;
+    memset(&nv, 0, sizeof nv);
+    memcpy(nv.bt_name, "Rex =9~", 7);
+    memcpy(nv.zero_offset_mdeg, offsets, sizeof offsets);
+    return nv;
+}
+
+static void assert_nv_equal(const xgo_board_nv_t *want, const xgo_board_nv_t *got)
+{
+    TEST_ASSERT_EQUAL_MEMORY(want->bt_name, got->bt_name, XGO_BT_NAME_LEN);
+    TEST_ASSERT_EQUAL_MEMORY(want->zero_offset_mdeg, got->zero_offset_mdeg,
+                             sizeof want->zero_offset_mdeg);
+}
+
+/* ------------------------------------------------------------ the child */
+
+typedef struct emu_s {
+    pid_t pid;
+    int out_fd;
+    char pty[256];
+} emu_t;
+
+static emu_t g_emu = {-1, -1, ""};
+static int g_port = -1;
+
+/* Starts xgo-emu with argv[1..] = args (NULL-terminated), stderr to g_err. */
+static void emu_spawn(const char *const *args)
+{
+    const char *argv[32];
+    size_t argc = 0;
+    int out_pipe[2];
+    argv[argc++] = XGO_EMU_PATH;
+    while (*args != NULL && argc < 31) {
+        argv[argc++] = *args++;
+    }
+    argv[argc] = NULL;
+    TEST_ASSERT_EQUAL_INT(0, pipe(out_pipe));
+    g_emu.pid = fork();
+    TEST_ASSERT_TRUE_MESSAGE(g_emu.pid >= 0, "fork failed");
+    if (g_emu.pid == 0) {
+        int err = open(g_err, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        dup2(out_pipe[1], STDOUT_FILENO);
+        if (err >= 0) {
+            dup2(err, STDERR_FILENO);
+        }
+        close(out_pipe[0]);
+        close(out_pipe[1]);
+        execv(XGO_EMU_PATH, (char *const *)argv);
+        _exit(127);
+    }
+    close(out_pipe[1]);
+    g_emu.out_fd = out_pipe[0];
+    g_emu.pty[0] = '\0';
+}
+
+/* Reads stdout up to the first newline (the pty path); 0 if the child
+ * closed stdout first (it exited). */
+static int emu_read_pty_line(void)
+{
+    long long deadline = now_us() + EMU_START_TIMEOUT_MS * 1000LL;
+    size_t len = 0;
+    for (;;) {
+        struct pollfd pfd;
+        char c;
+        ssize_t n;
+        TEST_ASSERT_TRUE_MESSAGE(now_us() < deadline, "no pty path on xgo-emu's stdout");
+        pfd.fd = g_emu.out_fd;
+        pfd.events = POLLIN;
+        if (poll(&pfd, 1, 50) <= 0) {
+            continue;
+        }
+        n = read(g_emu.out_fd, &c, 1);
+        if (n == 0) {
+            return 0;
+        }
+        if (n < 0) {
+            continue;
+        }
+        if (c == '\n') {
+            g_emu.pty[len] = '\0';
+            return 1;
+        }
+        TEST_ASSERT_TRUE(len + 1 < sizeof g_emu.pty);
+        g_emu.pty[len++] = c;
+    }
+}
+
+/* Waits (bounded) for the child; returns its wait status. */
+static int emu_wait(void)
+{
+    long long deadline = now_us() + EMU_EXIT_TIMEOUT_MS * 1000LL;
+    int status = 0;
+    for (;;) {
+        pid_t r = waitpid(g_emu.pid, &status, WNOHANG);
+        if (r == g_emu.pid) {
+            break;
+        }
+        TEST_ASSERT_TRUE_MESSAGE(now_us() < deadline, "xgo-emu did not exit");
+        sleep_us(2000);
+    }
+    g_emu.pid = -1;
+    close(g_emu.out_fd);
+    g_emu.out_fd = -1;
+    return status;
+}
+
+static void emu_start(const char *const *args)
+{
+    emu_spawn(args);
+    TEST_ASSERT_TRUE_MESSAGE(emu_read_pty_line(), "xgo-emu exited at start");
+}
+
+static void emu_start_with_state(const char *extra1, const char *extra2)
+{
+    const char *args[] = {"--state", g_state, extra1, extra2, NULL};
+    emu_start(args);
+}
+
+/* SIGTERM, and a clean exit 0. */
+static void emu_stop(void)
+{
+    int status;
+    char err[4096];
+    TEST_ASSERT_EQUAL_INT(0, kill(g_emu.pid, SIGTERM));
+    status = emu_wait();
+    read_file(g_err, err, sizeof err);
+    TEST_ASSERT_TRUE_MESSAGE(WIFEXITED(status) && WEXITSTATUS(status) == 0, err);
+}
+
+/* Runs xgo-emu to its exit (for start-up refusals); returns the exit status
+ * and leaves its stderr in err. Nothing may appear on stdout. */
+static int emu_run_to_exit(const char *const *args, char *err, size_t size)
+{
+    int status;
+    emu_spawn(args);
+    TEST_ASSERT_FALSE_MESSAGE(emu_read_pty_line(), "xgo-emu started serving");
+    status = emu_wait();
+    TEST_ASSERT_TRUE(WIFEXITED(status));
+    read_file(g_err, err, size);
+    return WEXITSTATUS(status);
+}
+
+/* ------------------------------------------------------------- the host */
+
+static int port_open(void)
+{
+    int fd = open(g_emu.pty, O_RDWR | O_NOCTTY | O_NONBLOCK);
+    TEST_ASSERT_TRUE_MESSAGE(fd >= 0, "cannot open the emulator's pty");
+    tcflush(fd, TCIOFLUSH);
+    return fd;
+}
+
+static void port_write(int fd, const uint8_t *bytes, size_t n)
+{
+    long long deadline = now_us() + REPLY_TIMEOUT_MS * 1000LL;
+    size_t done = 0;
+    while (done < n) {
+        ssize_t w = write(fd, bytes + done, n - done);
+        if (w > 0) {
+            done += (size_t)w;
+            continue;
+        }
+        TEST_ASSERT_TRUE_MESSAGE(now_us() < deadline, "write to the pty stalled");
+        sleep_us(500);
+    }
+}
+
+static void write_regs(int fd, uint8_t addr, const void *values, size_t n)
+{
+    uint8_t frame[XGO_FRAME_MAX_LEN];
+    size_t len = xgo_frame_encode(XGO_TYPE_WRITE, addr, values, n, frame, sizeof frame);
+    TEST_ASSERT_TRUE(len > 0);
+    port_write(fd, frame, len);
+}
+
+static void write_reg(int fd, uint8_t addr, uint8_t value)
+{
+    write_regs(fd, addr, &value, 1);
+}
+
+static void read_regs(int fd, uint8_t addr, uint8_t count, uint8_t *values)
+{
+    uint8_t req[XGO_READ_REQUEST_LEN];
+    uint8_t reply[XGO_FRAME_MAX_LEN];
+    size_t want = (size_t)count + XGO_FRAME_OVERHEAD;
+    size_t got = 0;
+    long long deadline = now_us() + REPLY_TIMEOUT_MS * 1000LL;
+    xgo_frame_encode(XGO_TYPE_READ, addr, &count, 1, req, sizeof req);
+    tcflush(fd, TCIFLUSH);
+    port_write(fd, req, sizeof req);
+    while (got < want && now_us() < deadline) {
+        struct pollfd pfd;
+        ssize_t r;
+        pfd.fd = fd;
+        pfd.events = POLLIN;
+        if (poll(&pfd, 1, 20) <= 0) {
+            continue;
+        }
+        r = read(fd, reply + got, want - got);
+        if (r > 0) {
+            got += (size_t)r;
+        }
+    }
+    TEST_ASSERT_EQUAL_INT_MESSAGE((int)want, (int)got, "incomplete reply");
+    TEST_ASSERT_EQUAL_HEX8(addr, reply[4]);
+    memcpy(values, reply + 5, count);
+}
+
+/* A 4-byte IMU read: float32 little-endian degrees. */
+static float read_angle(int fd, uint8_t addr)
+{
+    uint8_t b[4];
+    uint32_t u;
+    float f;
+    read_regs(fd, addr, 4, b);
+    u = (uint32_t)b[0] | (uint32_t)b[1] << 8 | (uint32_t)b[2] << 16 | (uint32_t)b[3] << 24;
+    memcpy(&f, &u, sizeof f);
+    return f;
+}
+
+static void load_state_file(xgo_board_nv_t *nv)
+{
+    char why[256] = "";
+    TEST_ASSERT_EQUAL_INT_MESSAGE(XGO_HOST_STATE_LOADED, xgo_host_state_load(g_state, nv, why, sizeof why),
+                                  why);
+}
+
+/* ------------------------------------------------------------- fixtures */
+
+void setUp(void)
+{
+    strcpy(g_dir, "/tmp/xgo-state-test-XXXXXX");
+    TEST_ASSERT_NOT_NULL(mkdtemp(g_dir));
+    snprintf(g_state, sizeof g_state, "%s/state", g_dir);
+    snprintf(g_err, sizeof g_err, "%s/emu.err", g_dir);
+}
+
+void tearDown(void)
+{
+    if (g_port >= 0) {
+        close(g_port);
+        g_port = -1;
+    }
+    if (g_emu.pid > 0) {
+        kill(g_emu.pid, SIGKILL);
+        waitpid(g_emu.pid, NULL, 0);
+        g_emu.pid = -1;
+    }
+    if (g_emu.out_fd >= 0) {
+        close(g_emu.out_fd);
+        g_emu.out_fd = -1;
+    }
+    remove_dir_contents();
+    rmdir(g_dir);
+}
+
+/* ------------------------------------------------ the file, in process */
+
+static void test_format_is_the_documented_text(void)
+{
+    xgo_board_nv_t nv;
+    char text[XGO_HOST_STATE_MAX_BYTES];
+    memset(&nv, 0, sizeof nv);
+    memcpy(nv.bt_name, "XGOMINI", 7);
+    TEST_ASSERT_EQUAL_UINT((unsigned)85, (unsigned)xgo_host_state_format(&nv, text, sizeof text));
+    /* crc32 checked independently: python3 -c 'import zlib; ...' */
+    TEST_ASSERT_EQUAL_STRING("xgo-state 1\n"
+                             "bt_name=XGOMINI\n"
+                             "zero_offsets_mdeg=0 0 0 0 0 0 0 0 0 0 0 0\n"
+                             "crc32=5aa01ab5\n",
+                             text);
+    /* A full 10-character name has no NUL in the struct. */
+    memcpy(nv.bt_name, "ABCDEFGHIJ", 10);
+    TEST_ASSERT_TRUE(xgo_host_state_format(&nv, text, sizeof text) > 0);
+    TEST_ASSERT_NOT_NULL(strstr(text, "\nbt_name=ABCDEFGHIJ\n"));
+    /* Too small a buffer: 0, never a cut file. */
+    TEST_ASSERT_EQUAL_UINT((unsigned)0, (unsigned)xgo_host_state_format(&nv, text, 60));
+}
+
+static void test_format_parse_round_trip(void)
+{
+    xgo_board_nv_t nv = nv_example();
+    xgo_board_nv_t back;
+    char text[XGO_HOST_STATE_MAX_BYTES];
+    char why[200];
+    size_t len = xgo_host_state_format(&nv, text, sizeof text);
+    TEST_ASSERT_TRUE(len > 0);
+    memset(&back, 0x5A, sizeof back);
+    TEST_ASSERT_TRUE_MESSAGE(xgo_host_state_parse(text, len, &back, why, sizeof why), why);
+    assert_nv_equal(&nv, &back);
+}
+
+/* Whatever a crash or a bad disk leaves - any prefix of a valid file, any
+ * single flipped bit - is refused, never half-applied. */
+static void test_every_truncation_and_bit_flip_is_refused(void)
+{
+    xgo_board_nv_t nv = nv_example();
+    xgo_board_nv_t back;
+    char text[XGO_HOST_STATE_MAX_BYTES];
+    char bad[XGO_HOST_STATE_MAX_BYTES];
+    char why[200];
+    size_t len = xgo_host_state_format(&nv, text, sizeof text);
+    size_t i;
+    for (i = 0; i < len; i++) {
+        TEST_ASSERT_FALSE_MESSAGE(xgo_host_state_parse(text, i, &back, why, sizeof why),
+                                  "a truncated file was accepted");
+    }
+    for (i = 0; i < len * 8; i++) {
+        memcpy(bad, text, len);
+        bad[i / 8] = (char)(bad[i / 8] ^ (1 << (i % 8)));
+        TEST_ASSERT_FALSE_MESSAGE(xgo_host_state_parse(bad, len, &back, why, sizeof why),
+                                  "a file with a flipped bit was accepted");
+    }
+    /* and a trailing extra byte */
+    memcpy(bad, text, len);
+    bad[len] = '\n';
+    TEST_ASSERT_FALSE(xgo_host_state_parse(bad, len + 1, &back, why, sizeof why));
+}
+
+/* Files with a correct crc but a wrong layout (hand-edited and re-signed). */
+static void test_layout_errors_are_refused_with_a_reason(void)
+{
+    static const struct {
+        const char *body;
+        const char *reason;
+    } cases[] = {
+        {"xgo-state 2\nbt_name=A\nzero_offsets_mdeg=0 0 0 0 0 0 0 0 0 0 0 0\n", "unsupported"},
+        {"xgo-state 1\nbt_name=\nzero_offsets_mdeg=0 0 0 0 0 0 0 0 0 0 0 0\n", "line 2"},
+        {"xgo-state 1\nbt_name=ABCDEFGHIJK\nzero_offsets_mdeg=0 0 0 0 0 0 0 0 0 0 0 0\n", "line 2"},
+        {"xgo-state 1\nbt_name=A\tB\nzero_offsets_mdeg=0 0 0 0 0 0 0 0 0 0 0 0\n", "line 2"},
+        {"xgo-state 1\nname=A\nzero_offsets_mdeg=0 0 0 0 0 0 0 0 0 0 0 0\n", "line 2"},
+        {"xgo-state 1\nbt_name=A\nzero_offsets_mdeg=0 0 0 0 0 0 0 0 0 0 0\n", "line 3"},
+        {"xgo-state 1\nbt_name=A\nzero_offsets_mdeg=0 0 0 0 0 0 0 0 0 0 0 0 0\n", "line 3"},
+        {"xgo-state 1\nbt_name=A\nzero_offsets_mdeg=0 0 0 0 0 0 0 0 0 0 0 x\n", "line 3"},
+        {"xgo-state 1\nbt_name=A\nzero_offsets_mdeg=0  0 0 0 0 0 0 0 0 0 0 0\n", "line 3"},
+        {"xgo-state 1\nbt_name=A\nzero_offsets_mdeg=0 0 0 0 0 0 0 0 0 0 0 -\n", "line 3"},
+        {"xgo-state 1\nbt_name=A\nzero_offsets_mdeg=0 0 0 0 0 0 0 0 0 0 0 2147483648\n", "line 3"},
+        {"xgo-state 1\nbt_name=A\nzero_offsets_mdeg=0 0 0 0 0 0 0 0 0 0 0 0\nextra=1\n",
+         "unexpected"},
+        {"xgo-state 1\nbt_name=A\n", "line 3"},
+        {"#!/bin/sh\necho hello\n", "not an xgo-emu state file"},
+    };
+    char text[512];
+    char why[200];
+    xgo_board_nv_t nv;
+    size_t i;
+    for (i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        sign(cases[i].body, text, sizeof text);
+        why[0] = '\0';
+        TEST_ASSERT_FALSE_MESSAGE(xgo_host_state_parse(text, strlen(text), &nv, why, sizeof why),
+                                  cases[i].body);
+        TEST_ASSERT_NOT_NULL_MESSAGE(strstr(why, cases[i].reason), why);
+    }
+    /* The extremes of the syntax are accepted (range is the board's call). */
+    sign("xgo-state 1\nbt_name= ~ \nzero_offsets_mdeg=-2147483648 0 0 0 0 0 0 0 0 0 0 "
+         "2147483647\n",
+         text, sizeof text);
+    TEST_ASSERT_TRUE_MESSAGE(xgo_host_state_parse(text, strlen(text), &nv, why, sizeof why), why);
+    TEST_ASSERT_EQUAL_MEMORY(" ~ \0", nv.bt_name, 4);
+    TEST_ASSERT_EQUAL_INT32(INT32_MIN, nv.zero_offset_mdeg[0]);
+    TEST_ASSERT_EQUAL_INT32(INT32_MAX, nv.zero_offset_mdeg[11]);
+}
+
+static void test_save_load_missing_and_permissions(void)
+{
+    xgo_board_nv_t nv = nv_example();
+    xgo_board_nv_t back;
+    char why[300] = "";
+    char tmp[256];
+    struct stat st;
+    TEST_ASSERT_EQUAL_INT(XGO_HOST_STATE_MISSING, xgo_host_state_load(g_state, &back, why, sizeof why));
+    TEST_ASSERT_EQUAL_INT_MESSAGE(0, xgo_host_state_save(g_state, &nv, why, sizeof why), why);
+    load_state_file(&back);
+    assert_nv_equal(&nv, &back);
+    TEST_ASSERT_EQUAL_INT(0, count_tmp_files(tmp, sizeof tmp));
+    /* A replaced file keeps the permissions its owner gave it. */
+    TEST_ASSERT_EQUAL_INT(0, chmod(g_state, 0600));
+    memcpy(nv.bt_name, "Other\0\0\0\0\0", 10);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(0, xgo_host_state_save(g_state, &nv, why, sizeof why), why);
+    TEST_ASSERT_EQUAL_INT(0, stat(g_state, &st));
+    TEST_ASSERT_EQUAL_INT(0600, st.st_mode & 0777);
+    load_state_file(&back);
+    assert_nv_equal(&nv, &back);
+}
+
+/* A save that cannot complete leaves the old file exactly as it was. */
+static void test_failed_save_leaves_the_old_file(void)
+{
+    xgo_board_nv_t nv = nv_example();
+    char before[512], after[512], tmp[160], why[300] = "";
+    TEST_ASSERT_EQUAL_INT(0, xgo_host_state_save(g_state, &nv, why, sizeof why));
+    TEST_ASSERT_TRUE(read_file(g_state, before, sizeof before) > 0);
+    /* Our temporary name is taken by a directory: the write fails. */
+    snprintf(tmp, sizeof tmp, "%s.tmp.%ld", g_state, (long)getpid());
+    TEST_ASSERT_EQUAL_INT(0, mkdir(tmp, 0700));
+    memcpy(nv.bt_name, "New\0\0\0\0\0\0\0", 10);
+    TEST_ASSERT_EQUAL_INT(-1, xgo_host_state_save(g_state, &nv, why, sizeof why));
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(why, "cannot write"), why);
+    TEST_ASSERT_TRUE(read_file(g_state, after, sizeof after) > 0);
+    TEST_ASSERT_EQUAL_STRING(before, after);
+    rmdir(tmp);
+}
+
+/* Leftovers of killed processes go; a live process's file and names that
+ * only look similar stay. */
+static void test_stale_temporary_files_are_removed(void)
+{
+    char path[256];
+    char tmp[256];
+    pid_t dead = fork();
+    TEST_ASSERT_TRUE(dead >= 0);
+    if (dead == 0) {
+        _exit(0);
+    }
+    TEST_ASSERT_EQUAL_INT(dead, waitpid(dead, NULL, 0)); /* reaped: the pid is free */
+    snprintf(path, sizeof path, "%s.tmp.%ld", g_state, (long)dead);
+    write_file(path, "half a fi");
+    snprintf(path, sizeof path, "%s.tmp.%ld", g_state, (long)getpid());
+    write_file(path, "in progress");
+    snprintf(path, sizeof path, "%s.tmp.x1", g_state);
+    write_file(path, "not ours");
+    snprintf(path, sizeof path, "%s/other.tmp.%ld", g_dir, (long)dead);
+    write_file(path, "not ours either");
+    TEST_ASSERT_EQUAL_INT(1, xgo_host_state_remove_stale(g_state));
+    TEST_ASSERT_EQUAL_INT(2, count_tmp_files(tmp, sizeof tmp));
+    TEST_ASSERT_EQUAL_INT(0, xgo_host_state_remove_stale(g_state));
+}
+
+/* ------------------------------------------------------ xgo-emu, live */
+
+/* Rename and calibrate over the wire, stop, restart: both come back. */
+static void test_name_and_zero_offsets_survive_a_restart(void)
+{
+    static const char name[] = "Rex-01";
+    xgo_board_nv_t first, second;
+    uint8_t back[XGO_BT_NAME_LEN];
+    unsigned i;
+    int nonzero = 0;
+
+    emu_start_with_state(NULL, NULL);
+    load_state_file(&first); /* created at start, with the defaults */
+    TEST_ASSERT_EQUAL_MEMORY("XGOMINI\0\0\0", first.bt_name, XGO_BT_NAME_LEN);
+    g_port = port_open();
+    write_regs(g_port, 0x13, name, strlen(name));
+    write_reg(g_port, 0x04, 1); /* calibration: joints limp where they stand */
+    sleep_us(100000);
+    write_reg(g_port, 0x21, 1); /* record: the standing angles become zero */
+    sleep_us(100000);
+    write_reg(g_port, 0x04, 0);
+    sleep_us(100000);
+    close(g_port);
+    g_port = -1;
+    emu_stop();
+
+    load_state_file(&first);
+    TEST_ASSERT_EQUAL_MEMORY("Rex-01\0\0\0", first.bt_name, XGO_BT_NAME_LEN);
+    for (i = 0; i < XGO_SERVO_COUNT; i++) {
+        nonzero += first.zero_offset_mdeg[i] != 0;
+    }
+    TEST_ASSERT_TRUE_MESSAGE(nonzero >= 4, "calibration recorded no offsets");
+
+    emu_start_with_state(NULL, NULL);
+    g_port = port_open();
+    read_regs(g_port, 0x13, XGO_BT_NAME_LEN, back);
+    TEST_ASSERT_EQUAL_MEMORY("Rex-01\0\0\0", back, XGO_BT_NAME_LEN);
+    /* A rename makes the board save again what it holds: the offsets it
+     * was started with. */
+    write_regs(g_port, 0x13, "Rex-02", 6);
+    sleep_us(50000);
+    close(g_port);
+    g_port = -1;
+    emu_stop();
+    load_state_file(&second);
+    TEST_ASSERT_EQUAL_MEMORY("Rex-02\0\0\0", second.bt_name, XGO_BT_NAME_LEN);
+    TEST_ASSERT_EQUAL_MEMORY(first.zero_offset_mdeg, second.zero_offset_mdeg,
+                             sizeof first.zero_offset_mdeg);
+}
+
+/* Is name (a NUL-padded 10-byte field) in the list of names? */
+static int name_in(const char *name, char (*names)[XGO_BT_NAME_LEN + 1], int n)
+{
+    int i;
+    for (i = 0; i < n; i++) {
+        if (strncmp(name, names[i], XGO_BT_NAME_LEN) == 0) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
+/* Renames the board as fast as the pty takes them for delay_us, recording
+ * every name sent. */
+static int rename_burst(int round, long delay_us, char (*names)[XGO_BT_NAME_LEN + 1], int max)
+{
+    long long end = now_us() + delay_us;
+    int n = 0;
+    do {
+        uint8_t frame[32];
+        size_t len;
+        if (n < max) {
+            snprintf(names[n], XGO_BT_NAME_LEN + 1, "K%03d-%04d", round, n);
+            len = xgo_frame_encode(XGO_TYPE_WRITE, 0x13, (const uint8_t *)names[n], 9, frame,
+                                   sizeof frame);
+            if (write(g_port, frame, len) == (ssize_t)len) {
+                n++; /* a partial write is at worst a name never sent whole */
+            }
+        }
+        sleep_us(200);
+    } while (now_us() < end);
+    return n;
+}
+
+/* SIGKILL at random moments while saves are under way: the file is always
+ * complete and holds a name that was really sent; at most the killed
+ * process's own temporary file is left, and the next start removes it. */
+static void test_state_file_survives_kill_at_random_points(void)
+{
+    static char names[1024][XGO_BT_NAME_LEN + 1];
+    xgo_board_nv_t nv;
+    char left[256];
+    char expect_left[256] = "";
+    int round, torn = 0, changed = 0;
+    unsigned seed = 12345u;
+
+    emu_start_with_state(NULL, NULL);
+    emu_stop(); /* the file exists from here on */
+    load_state_file(&nv);
+    snprintf(names[0], sizeof names[0], "%.10s", nv.bt_name);
+
+    for (round = 0; round < KILL_ROUNDS; round++) {
+        long delay_us;
+        int n;
+        seed = seed * 1103515245u + 12345u; /* fixed sequence, any libc */
+        delay_us = (long)((seed >> 8) % (KILL_MAX_DELAY_US + 1));
+        emu_start_with_state(NULL, NULL);
+        /* The previous round's leftover is gone once we are serving. */
+        TEST_ASSERT_EQUAL_INT_MESSAGE(0, count_tmp_files(left, sizeof left),
+                                      "a stale temporary file survived a start");
+        g_port = port_open();
+        n = 1 + rename_burst(round, delay_us, names + 1, 1023);
+        TEST_ASSERT_EQUAL_INT(0, kill(g_emu.pid, SIGKILL));
+        snprintf(expect_left, sizeof expect_left, "state.tmp.%ld", (long)g_emu.pid);
+        TEST_ASSERT_TRUE(WIFSIGNALED(emu_wait()));
+        close(g_port);
+        g_port = -1;
+
+        load_state_file(&nv); /* complete and valid, or the test fails here */
+        TEST_ASSERT_TRUE_MESSAGE(name_in(nv.bt_name, names, n), "a name that was never sent");
+        changed += strncmp(nv.bt_name, names[0], XGO_BT_NAME_LEN) != 0;
+        snprintf(names[0], sizeof names[0], "%.10s", nv.bt_name);
+        switch (count_tmp_files(left, sizeof left)) {
+        case 0:
+            break;
+        case 1:
+            TEST_ASSERT_EQUAL_STRING(expect_left, left);
+            torn++;
+            break;
+        default:
+            TEST_FAIL_MESSAGE("more than one temporary file left");
+        }
+    }
+    printf("kill test: %d rounds, the name changed in %d, killed mid-save %d times\n",
+           KILL_ROUNDS, changed, torn);
+    TEST_ASSERT_TRUE_MESSAGE(changed > KILL_ROUNDS / 4, "renames were hardly ever saved");
+}
+
+static void assert_refused(const char *what)
+{
+    const char *args[] = {"--state", g_state, NULL};
+    char before[512], after[512], err[2048];
+    const char *nl;
+    TEST_ASSERT_TRUE(read_file(g_state, before, sizeof before) >= 0);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(1, emu_run_to_exit(args, err, sizeof err), what);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(0, strncmp(err, "xgo-emu: --state ", 17), err);
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(err, "refusing to start"), err);
+    nl = strchr(err, '\n');
+    TEST_ASSERT_TRUE_MESSAGE(nl != NULL && nl[1] == '\0', err); /* one line */
+    TEST_ASSERT_TRUE(read_file(g_state, after, sizeof after) >= 0);
+    TEST_ASSERT_EQUAL_STRING_MESSAGE(before, after, "the refused file was changed");
+}
+
+/* A damaged, foreign or out-of-range file: exit 1, one line, file untouched,
+ * no pty. */
+static void test_bad_state_file_refuses_to_start(void)
+{
+    char text[512];
+    const char *args[] = {"--state", g_state, NULL};
+    char err[2048];
+    xgo_board_nv_t nv = nv_example();
+    char why[200];
+    size_t len = xgo_host_state_format(&nv, text, sizeof text);
+
+    text[len - 20] = '7'; /* damaged: crc mismatch */
+    write_file(g_state, text);
+    assert_refused("damaged");
+    write_file(g_state, "export PATH=/usr/bin\n"); /* not ours */
+    assert_refused("foreign");
+    text[len / 2] = '\0'; /* cut short */
+    write_file(g_state, text);
+    assert_refused("truncated");
+    sign("xgo-state 1\nbt_name=Rex\nzero_offsets_mdeg=0 0 0 0 0 0 0 0 0 0 0 400000\n", text,
+         sizeof text); /* syntax fine, the board refuses 400 degrees */
+    TEST_ASSERT_TRUE(xgo_host_state_parse(text, strlen(text), &nv, why, sizeof why));
+    write_file(g_state, text);
+    assert_refused("out of range");
+
+    /* A path that cannot be created is reported at start too. */
+    snprintf(text, sizeof text, "%s/no-such-dir/state", g_dir);
+    args[1] = text;
+    TEST_ASSERT_EQUAL_INT(1, emu_run_to_exit(args, err, sizeof err));
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(err, "no-such-dir/state"), err);
+}
+
+static void test_ground_tilt_misuse_exits_2(void)
+{
+    static const char *const bad[] = {"",      "5",      "5,",      ",5",     "a,b",
+                                      "46,0",  "0,-45.001", "5;3",  "5,3,1",  "1e1,0",
+                                      "nan,0", " 5,3",   "5,3 ",    "5.,3",   ".5,3",
+                                      "--5,3", "0x10,0", "99999999999999999999,0"};
+    size_t i;
+    char err[4096];
+    for (i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        const char *args[] = {"--ground-tilt", bad[i], NULL};
+        const char *nl;
+        TEST_ASSERT_EQUAL_INT_MESSAGE(2, emu_run_to_exit(args, err, sizeof err), bad[i]);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(0, strncmp(err, "xgo-emu: --ground-tilt must be", 30), err);
+        nl = strchr(err, '\n');
+        TEST_ASSERT_NOT_NULL(nl);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(0, strncmp(nl + 1, "usage: xgo-emu", 14), err);
+    }
+}
+
+/* The IMU reads the ground's tilt; self-stabilisation (0x61 = 1) levels the
+ * body so it reads about zero. Decimals reach the board exactly. */
+static void test_ground_tilt_and_self_levelling(void)
+{
+    const char *args[] = {"--ground-tilt", "10,-4", NULL};
+    const char *args_fine[] = {"--ground-tilt=-2.5,7.125", NULL};
+    float roll, pitch;
+
+    emu_start(args);
+    g_port = port_open();
+    sleep_us(100000);
+    roll = read_angle(g_port, 0x62);
+    pitch = read_angle(g_port, 0x63);
+    TEST_ASSERT_FLOAT_WITHIN(0.2f, 10.0f, roll);
+    TEST_ASSERT_FLOAT_WITHIN(0.2f, -4.0f, pitch);
+    write_reg(g_port, 0x61, 1);
+    sleep_us(1200000);
+    roll = read_angle(g_port, 0x62);
+    pitch = read_angle(g_port, 0x63);
+    TEST_ASSERT_FLOAT_WITHIN(1.0f, 0.0f, roll);
+    TEST_ASSERT_FLOAT_WITHIN(1.0f, 0.0f, pitch);
+    write_reg(g_port, 0x61, 0); /* and back onto the slope */
+    sleep_us(1200000);
+    TEST_ASSERT_FLOAT_WITHIN(0.5f, 10.0f, read_angle(g_port, 0x62));
+    close(g_port);
+    g_port = -1;
+    emu_stop();
+
+    emu_start(args_fine);
+    g_port = port_open();
+    sleep_us(50000);
+    TEST_ASSERT_FLOAT_WITHIN(0.01f, -2.5f, read_angle(g_port, 0x62));
+    TEST_ASSERT_FLOAT_WITHIN(0.01f, 7.125f, read_angle(g_port, 0x63));
+    close(g_port);
+    g_port = -1;
+    emu_stop();
+}
+
+int main(void)
+{
+    signal(SIGPIPE, SIG_IGN);
+    UNITY_BEGIN();
+    RUN_TEST(test_format_is_the_documented_text);
+    RUN_TEST(test_format_parse_round_trip);
+    RUN_TEST(test_every_truncation_and_bit_flip_is_refused);
+    RUN_TEST(test_layout_errors_are_refused_with_a_reason);
+    RUN_TEST(test_save_load_missing_and_permissions);
+    RUN_TEST(test_failed_save_leaves_the_old_file);
+    RUN_TEST(test_stale_temporary_files_are_removed);
+    RUN_TEST(test_name_and_zero_offsets_survive_a_restart);
+    RUN_TEST(test_state_file_survives_kill_at_random_points);
+    RUN_TEST(test_bad_state_file_refuses_to_start);
+    RUN_TEST(test_ground_tilt_misuse_exits_2);
+    RUN_TEST(test_ground_tilt_and_self_levelling);
+    return UNITY_END();
+}
