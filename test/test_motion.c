@@ -307,6 +307,40 @@ static void test_calibration_records_zero_offsets(void)
     TEST_ASSERT_EQUAL_HEX8(XGO_MODE_WHOLE_UNIT, rd(XGO_REG_MODE));
 }
 
+static void test_repeated_calibration_keeps_offsets_storable(void)
+{
+    xgo_board_nv_t nv;
+    unsigned k, i;
+    for (k = 0; k < 12; k++) {
+        wr(XGO_REG_CALIBRATION, 1);
+        wr(XGO_REG_SET_ZERO, 1);
+        ticks(1);
+        wr(XGO_REG_CALIBRATION, 0);
+        ticks(XGO_TICK_HZ); /* the joints walk back to the standing pose */
+    }
+    xgo_board_get_nv(&board, &nv);
+    for (i = 0; i < XGO_SERVO_COUNT; i++) {
+        TEST_ASSERT_TRUE(nv.zero_offset_mdeg[i] >= -180000 && nv.zero_offset_mdeg[i] < 180000);
+    }
+    TEST_ASSERT_TRUE(xgo_board_set_nv(&board, &nv)); /* what the board saves, it loads */
+}
+
+static void test_writes_of_several_groups_in_one_tick_keep_the_last_group(void)
+{
+    /* xgolib's pace(), gait_type() and motor() can land within one tick. */
+    const uint8_t cmd = 0xA2;
+    unsigned t;
+    ticks(100);
+    wr(XGO_REG_MOVE_MODE, 0);
+    wr(XGO_REG_GAIT_TYPE, 0);
+    wr(XGO_REG_SERVO11, cmd);
+    for (t = 0; t < XGO_TICK_HZ; t++) {
+        ticks(1);
+        TEST_ASSERT_EQUAL_HEX8(XGO_MODE_SERVO, rd(XGO_REG_MODE));
+    }
+    TEST_ASSERT_EQUAL_HEX8(cmd, rd(XGO_REG_SERVO11));
+}
+
 static void test_nv_data_round_trip_and_validation(void)
 {
     xgo_board_nv_t nv, back;
@@ -501,6 +535,8 @@ int main(void)
     RUN_TEST(test_servo_mode_reads_back_commanded_angles_at_register_speed);
     RUN_TEST(test_unloaded_leg_holds_and_ignores_commands);
     RUN_TEST(test_calibration_records_zero_offsets);
+    RUN_TEST(test_repeated_calibration_keeps_offsets_storable);
+    RUN_TEST(test_writes_of_several_groups_in_one_tick_keep_the_last_group);
     RUN_TEST(test_nv_data_round_trip_and_validation);
     RUN_TEST(test_bluetooth_rename_counts_as_nv_change);
     RUN_TEST(test_standing_posture_stops_and_clears_motion);

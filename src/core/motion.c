@@ -175,9 +175,12 @@ static void handle_writes(xgo_motion_t *m, xgo_regs_t *r)
 {
     int reset = 0;
 
-    if (any_written(r, XGO_REG_VX, XGO_REG_MOVE_MODE) ||
-        any_written(r, XGO_REG_PERIOD_X, XGO_REG_PERIOD_Z) ||
-        xgo_regs_take_written(r, XGO_REG_GAIT_TYPE)) {
+    /* Every flag is taken (no short-circuit), or a flag left behind would
+     * switch the mode back one tick later. */
+    int whole = any_written(r, XGO_REG_VX, XGO_REG_MOVE_MODE);
+    whole |= any_written(r, XGO_REG_PERIOD_X, XGO_REG_PERIOD_Z);
+    whole |= xgo_regs_take_written(r, XGO_REG_GAIT_TYPE);
+    if (whole) {
         m->group_mode = XGO_MODE_WHOLE_UNIT;
     }
     if (any_written(r, XGO_REG_LEG1_X, XGO_REG_LEG4_Z)) {

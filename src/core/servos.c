@@ -83,7 +83,15 @@ void xgo_servos_record_zero(xgo_servos_t *s)
     /* The raw position the servo has now becomes 0 deg: from here on the
      * board counts angles from it. */
     for (i = 0; i < XGO_SERVO_COUNT; i++) {
-        s->zero_offset_mdeg[i] += s->angle_mdeg[i];
+        /* A servo position is an angle: keep offsets in [-180, 180) deg so
+         * repeated calibrations cannot grow them without bound. */
+        int32_t offset = (s->zero_offset_mdeg[i] + s->angle_mdeg[i]) % 360000;
+        if (offset >= 180000) {
+            offset -= 360000;
+        } else if (offset < -180000) {
+            offset += 360000;
+        }
+        s->zero_offset_mdeg[i] = offset;
         s->angle_mdeg[i] = clamp_joint(s, i, 0);
         s->target_mdeg[i] = s->angle_mdeg[i];
     }
