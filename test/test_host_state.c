@@ -648,7 +648,8 @@ static int rename_burst(int round, long delay_us, char (*names)[XGO_BT_NAME_LEN 
         uint8_t frame[32];
         size_t len;
         if (n < max) {
-            snprintf(names[n], XGO_BT_NAME_LEN + 1, "K%03d-%04d", round, n);
+            snprintf(names[n], XGO_BT_NAME_LEN + 1, "K%03u-%04u", (unsigned)round % 1000u,
+                     (unsigned)n % 10000u);
             len = xgo_frame_encode(XGO_TYPE_WRITE, 0x13, (const uint8_t *)names[n], 9, frame,
                                    sizeof frame);
             if (write(g_port, frame, len) == (ssize_t)len) {
