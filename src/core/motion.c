@@ -171,12 +171,13 @@ static void capture_servo_commands(xgo_motion_t *m, xgo_regs_t *r, int entering)
     }
 }
 
-static void handle_writes(xgo_motion_t *m, xgo_regs_t *r)
+/* The mode groups of the spec's Mode column: the last group written wins.
+ * Every flag is taken (no short-circuit), or a flag left behind would switch
+ * the mode back one tick later. */
+static void take_group_writes(xgo_motion_t *m, xgo_regs_t *r)
 {
-    int reset = 0;
-
-    /* Every flag is taken (no short-circuit), or a flag left behind would
-     * switch the mode back one tick later. */
+    unsigned i;
+    int servo = 0;
     int whole = any_written(r, XGO_REG_VX, XGO_REG_MOVE_MODE);
     whole |= any_written(r, XGO_REG_PERIOD_X, XGO_REG_PERIOD_Z);
     whole |= xgo_regs_take_written(r, XGO_REG_GAIT_TYPE);
@@ -186,19 +187,20 @@ static void handle_writes(xgo_motion_t *m, xgo_regs_t *r)
     if (any_written(r, XGO_REG_LEG1_X, XGO_REG_LEG4_Z)) {
         m->group_mode = XGO_MODE_LEG;
     }
-    {
-        /* Servo group: capture which joints were commanded before the
-         * flags are consumed. */
-        unsigned i;
-        int servo_written = xgo_regs_take_written(r, XGO_REG_SERVO_SPEED);
-        for (i = 0; i < XGO_SERVO_COUNT && !servo_written; i++) {
-            servo_written = xgo_regs_was_written(r, (uint8_t)(XGO_REG_SERVO11 + i));
-        }
-        if (servo_written) {
-            capture_servo_commands(m, r, m->group_mode != XGO_MODE_SERVO);
-            m->group_mode = XGO_MODE_SERVO;
-        }
+    /* Servo group: peek, so capture_servo_commands sees which joints. */
+    servo = xgo_regs_take_written(r, XGO_REG_SERVO_SPEED);
+    for (i = 0; i < XGO_SERVO_COUNT; i++) {
+        servo |= xgo_regs_was_written(r, (uint8_t)(XGO_REG_SERVO11 + i));
     }
+    if (servo) {
+        capture_servo_commands(m, r, m->group_mode != XGO_MODE_SERVO);
+        m->group_mode = XGO_MODE_SERVO;
+    }
+}
+
+/* Debug group: unload/reload, calibration, set zero, Bluetooth name. */
+static void take_debug_writes(xgo_motion_t *m, xgo_regs_t *r)
+{
     if (xgo_regs_take_written(r, XGO_REG_UNLOAD)) {
         apply_unload(m, xgo_regs_get(r, XGO_REG_UNLOAD));
         m->group_mode = XGO_MODE_DEBUG;
@@ -226,6 +228,12 @@ static void handle_writes(xgo_motion_t *m, xgo_regs_t *r)
     if (any_written(r, XGO_REG_BT_NAME, XGO_REG_BT_NAME + XGO_BT_NAME_LEN - 1u)) {
         m->nv_changes++;
     }
+}
+
+/* Standing posture, perform mode, actions; returns 1 for a reset (255). */
+static int take_action_writes(xgo_motion_t *m, xgo_regs_t *r)
+{
+    int reset = 0;
     if (xgo_regs_take_written(r, XGO_REG_STAND)) {
         if (xgo_regs_get(r, XGO_REG_STAND) == 1) {
             stop_action(m);
@@ -251,7 +259,16 @@ static void handle_writes(xgo_motion_t *m, xgo_regs_t *r)
         m->perform_last = xgo_action_next_in_cycle(m->perform_last);
         start_action(m, m->perform_last);
     }
-    if (reset) {
+    return reset;
+}
+
+/* Writes within one tick apply in this order (docs/motion.md); a reset
+ * comes last so it wins. */
+static void handle_writes(xgo_motion_t *m, xgo_regs_t *r)
+{
+    take_group_writes(m, r);
+    take_debug_writes(m, r);
+    if (take_action_writes(m, r)) {
         reset_all(m, r);
     }
 }
