@@ -1,0 +1,701 @@
+/*
+ * mcu_selftest.c - the portable core running on a Cortex-M0 (QEMU -M microbit)
+ * and, compiled unchanged for the host, the reference it must match.
+ *
+ *   1. the spec's examples on the wire: with every servo at 0x80 the read
+ *      request gets the spec's reply byte for byte; then the write (vx = 0xFF)
+ *      and after 1 s of trotting the same read: the reply's framing and its
+ *      12 joint bytes;
+ *   2. a trot with body pose (as tools/bench_board.c) for 2000 ticks, then the
+ *      joints, the IMU bytes, the IMU float32 views, every register and the
+ *      diagnostic block read over the wire, plus the internal joint angles;
+ *      standing idle; preset action 24 played to its end;
+ *   3. a stream of write and read frames fed byte by byte and in one call.
+ *
+ * Lines starting with "RESULT" are the program's results: tools/mcu/run.sh
+ * requires them to be identical on the host and on the MCU (the core is
+ * integer-only, so they must match bit for bit). "COST" lines are exact
+ * instruction counts (measure.h), printed on the MCU only. Exit status 0 when
+ * every check passes; a distinct code per failed check otherwise (startup.c
+ * has the fault codes). Built with -DMCU_SELFTEST_FAULT it faults at once on
+ * purpose (run.sh checks the HardFault exit).
+ */
+#include <stddef.h>
+#include <stdint.h>
+
+#include "measure.h"
+#include "semihost.h"
+#include "xgo/actions.h"
+#include "xgo/board.h"
+
+/* Exit codes */
+#define FAIL_SPEC_REPLY 10
+#define FAIL_FRAMING 11
+#define FAIL_JOINTS_VS_REGS 12
+#define FAIL_NOT_TROTTING 13
+#define FAIL_STREAM_REPLIES 14
+#define FAIL_CALIBRATION 15
+#define FAIL_INTERVAL 16
+#define FAIL_COUNTERS 17
+#define FAIL_ACTION 18
+
+#define WARMUP_TICKS 1000u
+#define MEASURED_TICKS 1000u
+#define STREAM_REPEATS 16u
+#define MAX_INTERVAL_INSNS 3500000u /* well inside the 24-bit SysTick range */
+
+static xgo_board_t board; /* 2.6 KB on the M0: in .bss */
+
+/* ---- output without a C library ----------------------------------------- */
+
+typedef struct line_s {
+    char s[256];
+    size_t n;
+} line_t;
+
+static void l_begin(line_t *l, const char *tag)
+{
+    l->n = 0;
+    l->s[0] = '\0';
+    while (*tag != '\0' && l->n < sizeof l->s - 2) {
+        l->s[l->n++] = *tag++;
+    }
+    l->s[l->n] = '\0';
+}
+
+static void l_char(line_t *l, char c)
+{
+    if (l->n < sizeof l->s - 2) {
+        l->s[l->n++] = c;
+        l->s[l->n] = '\0';
+    }
+}
+
+static void l_str(line_t *l, const char *s)
+{
+    while (*s != '\0') {
+        l_char(l, *s++);
+    }
+}
+
+static void l_hex(line_t *l, uint32_t v, int digits)
+{
+    static const char hex[] = "0123456789abcdef";
+    int i;
+    for (i = digits - 1; i >= 0; i--) {
+        l_char(l, hex[(v >> (4 * i)) & 15u]);
+    }
+}
+
+static void l_bytes(line_t *l, const uint8_t *b, size_t n)
+{
+    size_t i;
+    for (i = 0; i < n; i++) {
+        l_char(l, ' ');
+        l_hex(l, b[i], 2);
+    }
+}
+
+static void l_u32(line_t *l, uint32_t v)
+{
+    char d[10];
+    int k = 0;
+    do {
+        d[k++] = (char)('0' + v % 10u);
+        v /= 10u;
+    } while (v != 0u);
+    while (k > 0) {
+        l_char(l, d[--k]);
+    }
+}
+
+static void l_i32(line_t *l, int32_t v)
+{
+    if (v < 0) {
+        l_char(l, '-');
+        l_u32(l, 0u - (uint32_t)v);
+    } else {
+        l_u32(l, (uint32_t)v);
+    }
+}
+
+/* sum / count with one decimal */
+static void l_avg(line_t *l, uint32_t sum, uint32_t count)
+{
+    uint32_t tenths = (uint32_t)(((uint64_t)sum * 10u + count / 2u) / count);
+    l_u32(l, tenths / 10u);
+    l_char(l, '.');
+    l_u32(l, tenths % 10u);
+}
+
+static void l_end(line_t *l)
+{
+    l_char(l, '\n');
+    sh_write0(l->s);
+}
+
+static void fail(int code, const char *what)
+{
+    line_t l;
+    l_begin(&l, "FAIL ");
+    l_str(&l, what);
+    l_end(&l);
+    sh_exit(code);
+}
+
+/* ---- digest: FNV-1a 32 ---------------------------------------------------- */
+
+static uint32_t fnv_bytes(uint32_t h, const uint8_t *b, size_t n)
+{
+    size_t i;
+    for (i = 0; i < n; i++) {
+        h ^= b[i];
+        h *= 16777619u;
+    }
+    return h;
+}
+
+static uint32_t fnv_i32(uint32_t h, int32_t v)
+{
+    uint8_t b[4];
+    uint32_t u = (uint32_t)v;
+    b[0] = (uint8_t)u;
+    b[1] = (uint8_t)(u >> 8);
+    b[2] = (uint8_t)(u >> 16);
+    b[3] = (uint8_t)(u >> 24);
+    return fnv_bytes(h, b, 4);
+}
+
+#define FNV_INIT 2166136261u
+
+/* ---- cost statistics ---------------------------------------------------- */
+
+typedef struct stats_s {
+    uint32_t count, sum, min, max;
+} stats_t;
+
+static void st_init(stats_t *s)
+{
+    s->count = 0;
+    s->sum = 0;
+    s->min = 0xFFFFFFFFu;
+    s->max = 0;
+}
+
+/* harness overhead in instructions, from calibrate() */
+static uint32_t overhead;
+
+static uint32_t insns_of(uint32_t ticks)
+{
+    uint32_t insns = mcu_ticks_to_insns(ticks);
+    if (insns > MAX_INTERVAL_INSNS) {
+        fail(FAIL_INTERVAL, "interval too long for the 24-bit SysTick");
+    }
+    return insns >= overhead ? insns - overhead : 0u;
+}
+
+static void st_add(stats_t *s, uint32_t ticks)
+{
+    uint32_t v = insns_of(ticks);
+    s->count++;
+    s->sum += v;
+    if (v < s->min) {
+        s->min = v;
+    }
+    if (v > s->max) {
+        s->max = v;
+    }
+}
+
+static int counting; /* 1 on the MCU */
+
+/* Stack depth below the caller (bytes) of the core's entry points, measured
+ * with mcu_stack_probe_*; they include the measuring stub's 16 bytes. */
+static uint32_t stack_tick, stack_receive, stack_transmit;
+
+static void stack_max(uint32_t *keep, uint32_t depth)
+{
+    if (depth > *keep) {
+        *keep = depth;
+    }
+}
+
+static void print_stats(const char *what, const stats_t *s)
+{
+    line_t l;
+    if (!counting || s->count == 0) {
+        return;
+    }
+    l_begin(&l, "COST ");
+    l_str(&l, what);
+    l_str(&l, ": min ");
+    l_u32(&l, s->min);
+    l_str(&l, " avg ");
+    l_avg(&l, s->sum, s->count);
+    l_str(&l, " max ");
+    l_u32(&l, s->max);
+    l_str(&l, " instructions (n=");
+    l_u32(&l, s->count);
+    l_str(&l, ")");
+    l_end(&l);
+}
+
+/* The harness costs a fixed number of instructions (BL, one LDR); an empty
+ * function and a loop of exactly 4n+1 instructions pin it down and prove the
+ * counts exact. */
+static void calibrate(void)
+{
+    static const uint32_t ns[4] = {1u, 10u, 100u, 1000u};
+    uint32_t empty, i;
+    line_t l;
+
+    if (!counting) {
+        return;
+    }
+    empty = mcu_ticks_to_insns(mcu_ticks_empty());
+    if (empty < 1u) {
+        fail(FAIL_CALIBRATION, "empty function measured as 0 instructions");
+    }
+    overhead = empty - 1u;
+    l_begin(&l, "COST calibration: harness overhead ");
+    l_u32(&l, overhead);
+    l_str(&l, " instructions; 4n+1 loop:");
+    for (i = 0; i < 4u; i++) {
+        uint32_t got = insns_of(mcu_ticks_loop(ns[i]));
+        l_str(&l, " n=");
+        l_u32(&l, ns[i]);
+        l_str(&l, "->");
+        l_u32(&l, got);
+        if (got != 4u * ns[i] + 1u) {
+            l_end(&l);
+            fail(FAIL_CALIBRATION, "loop of 4n+1 instructions not counted exactly");
+        }
+    }
+    l_str(&l, " (exact)");
+    l_end(&l);
+}
+
+/* ---- the wire ------------------------------------------------------------ */
+
+static void send(const uint8_t *bytes, size_t n, uint32_t now_ms)
+{
+    (void)mcu_ticks_receive(&board, bytes, n, now_ms);
+}
+
+static void write_reg(uint8_t addr, uint8_t v, uint32_t now_ms)
+{
+    uint8_t frame[16];
+    size_t n = xgo_frame_encode(XGO_TYPE_WRITE, addr, &v, 1, frame, sizeof frame);
+    send(frame, n, now_ms);
+}
+
+/* Read count registers at addr over the wire; checks the reply's framing
+ * independently of the core's encoder and returns its data in data. */
+static void read_regs(uint8_t addr, uint8_t count, uint32_t now_ms, uint8_t *data)
+{
+    uint8_t req[XGO_READ_REQUEST_LEN];
+    uint8_t reply[XGO_FRAME_MAX_LEN + 1];
+    size_t n, i;
+    uint32_t sum;
+
+    n = xgo_frame_encode(XGO_TYPE_READ, addr, &count, 1, req, sizeof req);
+    send(req, n, now_ms);
+    n = xgo_board_transmit(&board, reply, sizeof reply);
+    if (n != (size_t)count + 8u || reply[0] != 0x55 || reply[1] != 0x00 ||
+        reply[2] != (uint8_t)(count + 8u) || reply[3] != 0x12 || reply[4] != addr ||
+        reply[n - 2] != 0x00 || reply[n - 1] != 0xAA) {
+        fail(FAIL_FRAMING, "reply framing");
+    }
+    sum = (uint32_t)reply[2] + reply[3] + reply[4];
+    for (i = 0; i < count; i++) {
+        data[i] = reply[5 + i];
+        sum += reply[5 + i];
+    }
+    if (reply[n - 3] != (uint8_t)~sum) {
+        fail(FAIL_FRAMING, "reply checksum");
+    }
+}
+
+static void result_bytes(const char *what, const uint8_t *b, size_t n)
+{
+    line_t l;
+    l_begin(&l, "RESULT ");
+    l_str(&l, what);
+    l_char(&l, ':');
+    l_bytes(&l, b, n);
+    l_end(&l);
+}
+
+static void result_hex32(const char *what, uint32_t v)
+{
+    line_t l;
+    l_begin(&l, "RESULT ");
+    l_str(&l, what);
+    l_str(&l, ": ");
+    l_hex(&l, v, 8);
+    l_end(&l);
+}
+
+/* ---- 1. the spec's examples ----------------------------------------------- */
+
+static void spec_examples(void)
+{
+    static const uint8_t write_vx[] = {0x55, 0x00, 0x09, 0x00, 0x30, 0xFF, 0xC7, 0x00, 0xAA};
+    static const uint8_t read_servos[] = {0x55, 0x00, 0x09, 0x02, 0x50, 0x0C, 0x98, 0x00, 0xAA};
+    static const uint8_t expected[] = {0x55, 0x00, 0x14, 0x12, 0x50, 0x80, 0x80, 0x80, 0x80, 0x80,
+                                       0x80, 0x80, 0x80, 0x80, 0x80, 0x80, 0x80, 0x89, 0x00, 0xAA};
+    uint8_t reply[64];
+    uint8_t joints[12];
+    size_t n, i;
+    uint32_t t;
+
+    uint8_t mid[12];
+
+    /* The spec's reply has every joint at 0x80: servo mode, all at 0x80. */
+    xgo_board_init(&board, NULL);
+    for (i = 0; i < sizeof mid; i++) {
+        mid[i] = 0x80;
+    }
+    n = xgo_frame_encode(XGO_TYPE_WRITE, XGO_REG_SERVO11, mid, sizeof mid, reply, sizeof reply);
+    send(reply, n, 0);
+    for (t = 0; t < 2u * XGO_TICK_HZ; t++) {
+        (void)mcu_ticks_tick(&board);
+    }
+    send(read_servos, sizeof read_servos, 2000);
+    n = xgo_board_transmit(&board, reply, sizeof reply);
+    if (n != sizeof expected) {
+        fail(FAIL_SPEC_REPLY, "spec read example: reply length");
+    }
+    for (i = 0; i < n; i++) {
+        if (reply[i] != expected[i]) {
+            fail(FAIL_SPEC_REPLY, "spec read example: reply bytes");
+        }
+    }
+    result_bytes("servos at 0x80 2 s, spec read reply", reply, n);
+
+    /* The spec's write: vx = 0xFF, no answer; the robot trots. */
+    send(write_vx, sizeof write_vx, 2001);
+    if (xgo_board_tx_pending(&board) != 0) {
+        fail(FAIL_SPEC_REPLY, "a write was answered");
+    }
+    if (board.regs.mem[XGO_REG_VX] != 0xFF) {
+        fail(FAIL_SPEC_REPLY, "spec write example: vx not 0xFF");
+    }
+
+    /* 1 s of trotting at vx = 0xFF, then the same request again. */
+    for (t = 0; t < XGO_TICK_HZ; t++) {
+        (void)mcu_ticks_tick(&board);
+    }
+    send(read_servos, sizeof read_servos, 3002);
+    n = xgo_board_transmit(&board, reply, sizeof reply);
+    if (n != 20 || reply[0] != 0x55 || reply[1] != 0x00 || reply[2] != 0x14 ||
+        reply[3] != 0x12 || reply[4] != 0x50 || reply[18] != 0x00 || reply[19] != 0xAA) {
+        fail(FAIL_FRAMING, "read after 1 s: framing");
+    }
+    if (reply[17] != xgo_frame_checksum(0x14, 0x12, 0x50, &reply[5], 12)) {
+        fail(FAIL_FRAMING, "read after 1 s: checksum");
+    }
+    for (i = 0; i < 12; i++) {
+        joints[i] = reply[5 + i];
+        if (joints[i] != board.regs.mem[XGO_REG_SERVO11 + i]) {
+            fail(FAIL_JOINTS_VS_REGS, "reply joints differ from registers 0x50..0x5B");
+        }
+    }
+    result_bytes("then vx=0xFF 500 ticks, spec read reply", reply, n);
+}
+
+/* ---- 2. trot with body pose; action 24 ------------------------------------ */
+
+static uint32_t state_digest(uint32_t h)
+{
+    size_t i;
+    for (i = 0; i < XGO_SERVO_COUNT; i++) {
+        h = fnv_i32(h, board.motion.servos.angle_mdeg[i]);
+        h = fnv_i32(h, board.motion.servos.target_mdeg[i]);
+    }
+    h = fnv_i32(h, board.motion.imu.roll_mdeg);
+    h = fnv_i32(h, board.motion.imu.pitch_mdeg);
+    h = fnv_i32(h, board.motion.imu.yaw_mdeg);
+    h = fnv_i32(h, board.motion.imu.yaw_acc);
+    h = fnv_i32(h, (int32_t)board.motion.battery.charge_upct);
+    return h;
+}
+
+/* Everything a host can read, over the wire; digest of it all. */
+static uint32_t wire_digest(const char *tag, uint32_t now_ms)
+{
+    uint8_t buf[XGO_FRAME_MAX_DATA];
+    uint32_t h = FNV_INIT;
+    line_t l;
+    int k;
+
+    read_regs(XGO_REG_SERVO11, 12, now_ms, buf);
+    h = fnv_bytes(h, buf, 12);
+    l_begin(&l, "RESULT ");
+    l_str(&l, tag);
+    l_str(&l, " joints 0x50..0x5B:");
+    l_bytes(&l, buf, 12);
+    l_end(&l);
+
+    read_regs(XGO_REG_IMU_ROLL, 3, now_ms, buf);
+    h = fnv_bytes(h, buf, 3);
+    l_begin(&l, "RESULT ");
+    l_str(&l, tag);
+    l_str(&l, " imu bytes 0x62..0x64:");
+    l_bytes(&l, buf, 3);
+    l_str(&l, "; float32 roll pitch yaw:");
+    for (k = 0; k < 3; k++) {
+        uint32_t bits;
+        read_regs((uint8_t)(XGO_REG_IMU_ROLL + k), 4, now_ms, buf);
+        h = fnv_bytes(h, buf, 4);
+        bits = (uint32_t)buf[0] | (uint32_t)buf[1] << 8 | (uint32_t)buf[2] << 16 |
+               (uint32_t)buf[3] << 24;
+        l_char(&l, ' ');
+        l_hex(&l, bits, 8);
+    }
+    l_end(&l);
+
+    read_regs(0x00, 0xD0, now_ms, buf); /* every register below the diagnostic block */
+    h = fnv_bytes(h, buf, 0xD0);
+    read_regs(XGO_REG_DIAG, 48, now_ms, buf);
+    h = fnv_bytes(h, buf, 48);
+    return h;
+}
+
+static void trot(void)
+{
+    stats_t warm, steady;
+    uint32_t t, h;
+    uintptr_t mark;
+    line_t l;
+
+    xgo_board_init(&board, NULL);
+    write_reg(XGO_REG_VX, 0xE0, 0);        /* forward ~19 cm/s */
+    write_reg(XGO_REG_VYAW, 0xA0, 0);      /* turning ~25 deg/s */
+    write_reg(XGO_REG_BODY_ROLL, 0xA0, 0); /* body pose on top */
+    write_reg(XGO_REG_BODY_Z, 0x60, 0);
+    write_reg(XGO_REG_PERIOD_PITCH, 0x40, 0);
+    st_init(&warm);
+    st_init(&steady);
+    mark = mcu_stack_probe_begin();
+    for (t = 0; t < WARMUP_TICKS; t++) {
+        st_add(&warm, mcu_ticks_tick(&board));
+    }
+    for (t = 0; t < MEASURED_TICKS; t++) {
+        st_add(&steady, mcu_ticks_tick(&board));
+    }
+    stack_max(&stack_tick, mcu_stack_probe_end(mark));
+    if (xgo_gait_is_standing(&board.motion.gait)) {
+        fail(FAIL_NOT_TROTTING, "the robot is not trotting after 2000 ticks");
+    }
+    h = wire_digest("trot 2000 ticks", 4000);
+    result_hex32("trot 2000 ticks wire digest", h);
+    result_hex32("trot 2000 ticks state digest (angles, targets, imu, battery)",
+                 state_digest(FNV_INIT));
+    l_begin(&l, "RESULT trot 2000 ticks joint angles mdeg:");
+    for (t = 0; t < XGO_SERVO_COUNT; t++) {
+        l_char(&l, ' ');
+        l_i32(&l, board.motion.servos.angle_mdeg[t]);
+    }
+    l_end(&l);
+    print_stats("xgo_board_tick, trot + body pose, ticks 1..1000 (start, ramp)", &warm);
+    print_stats("xgo_board_tick, trot + body pose, ticks 1001..2000 (steady)", &steady);
+
+    /* Standing idle. */
+    xgo_board_init(&board, NULL);
+    st_init(&steady);
+    for (t = 0; t < 200u; t++) {
+        st_add(&steady, mcu_ticks_tick(&board));
+    }
+    print_stats("xgo_board_tick, standing idle", &steady);
+    result_hex32("idle 200 ticks state digest", state_digest(FNV_INIT));
+
+    /* Preset action 24 (naughty, 7 s) to its end. */
+    write_reg(XGO_REG_ACTION, 24, 400);
+    st_init(&steady);
+    mark = mcu_stack_probe_begin();
+    for (t = 0; t < xgo_action_duration_ticks(24); t++) {
+        st_add(&steady, mcu_ticks_tick(&board));
+    }
+    stack_max(&stack_tick, mcu_stack_probe_end(mark));
+    if (board.motion.action_id != 0) {
+        fail(FAIL_ACTION, "action 24 still running after its duration");
+    }
+    print_stats("xgo_board_tick, preset action 24 (naughty, 7 s)", &steady);
+    h = wire_digest("action 24", 4000);
+    result_hex32("action 24 wire digest", h);
+    result_hex32("action 24 state digest", state_digest(FNV_INIT));
+}
+
+/* ---- 3. a stream of frames ------------------------------------------------ */
+
+static uint8_t stream[1600];
+
+/* Writes and reads as a host sends them, values varying per repeat. */
+static size_t build_stream(uint32_t *reads, uint32_t *reply_bytes)
+{
+    size_t n = 0;
+    uint32_t r;
+    *reads = 0;
+    *reply_bytes = 0;
+    for (r = 0; r < STREAM_REPEATS; r++) {
+        uint8_t v = (uint8_t)(0x60 + 8u * r);
+        uint8_t body[6];
+        uint8_t cnt;
+        size_t k;
+        for (k = 0; k < sizeof body; k++) {
+            body[k] = (uint8_t)(v + 3u * k);
+        }
+        n += xgo_frame_encode(XGO_TYPE_WRITE, XGO_REG_VX, &v, 1, &stream[n], sizeof stream - n);
+        n += xgo_frame_encode(XGO_TYPE_WRITE, XGO_REG_VYAW, &v, 1, &stream[n], sizeof stream - n);
+        n += xgo_frame_encode(XGO_TYPE_WRITE, XGO_REG_BODY_X, body, sizeof body, &stream[n],
+                              sizeof stream - n);
+        cnt = 12;
+        n += xgo_frame_encode(XGO_TYPE_READ, XGO_REG_SERVO11, &cnt, 1, &stream[n],
+                              sizeof stream - n);
+        cnt = 1;
+        n += xgo_frame_encode(XGO_TYPE_READ, XGO_REG_BATTERY, &cnt, 1, &stream[n],
+                              sizeof stream - n);
+        cnt = 4;
+        n += xgo_frame_encode(XGO_TYPE_READ, XGO_REG_IMU_YAW, &cnt, 1, &stream[n],
+                              sizeof stream - n);
+        *reads += 3;
+        *reply_bytes += (12 + 8) + (1 + 8) + (4 + 8);
+    }
+    return n;
+}
+
+static void parse_stream(void)
+{
+    static uint8_t out[1200];
+    stats_t per_byte, last_byte, other_byte, tx;
+    uint32_t reads, reply_bytes, got, h, ticks, frames_before;
+    uint32_t counters[XGO_DIAG_COUNT];
+    size_t n, i, pos, frame_end;
+    uintptr_t mark;
+    line_t l;
+
+    n = build_stream(&reads, &reply_bytes);
+    xgo_board_init(&board, NULL);
+    st_init(&per_byte);
+    st_init(&last_byte);
+    st_init(&other_byte);
+    st_init(&tx);
+
+    /* Byte by byte, as a UART RX interrupt would; 1 ms per frame. */
+    h = FNV_INIT;
+    got = 0;
+    pos = 0;
+    for (i = 0, frame_end = 0; i < n; i++) {
+        uint32_t c;
+        if (i == frame_end) {
+            frame_end = i + stream[i + 2]; /* LEN = whole frame */
+        }
+        c = mcu_ticks_receive(&board, &stream[i], 1, (uint32_t)(10 + pos));
+        st_add(&per_byte, c);
+        if (i + 1 == frame_end) {
+            size_t pending = xgo_board_tx_pending(&board);
+            st_add(&last_byte, c);
+            pos++;
+            if (pending > 0) {
+                st_add(&tx, mcu_ticks_transmit(&board, out, sizeof out));
+                h = fnv_bytes(h, out, pending);
+                got += (uint32_t)pending;
+            }
+        } else {
+            st_add(&other_byte, c);
+        }
+    }
+    if (got != reply_bytes) {
+        fail(FAIL_STREAM_REPLIES, "byte-by-byte stream: reply bytes");
+    }
+    xgo_board_counters(&board, counters);
+    frames_before = counters[XGO_DIAG_FRAMES_OK];
+    if (frames_before != 6u * STREAM_REPEATS || counters[XGO_DIAG_BYTES_DISCARDED] != 0) {
+        fail(FAIL_COUNTERS, "byte-by-byte stream: frames_ok / bytes_discarded");
+    }
+    result_hex32("stream byte by byte, replies digest", h);
+
+    /* The whole stream in one call; replies drained after. */
+    mark = mcu_stack_probe_begin();
+    ticks = mcu_ticks_receive(&board, stream, n, 1000);
+    stack_max(&stack_receive, mcu_stack_probe_end(mark));
+    if (xgo_board_tx_pending(&board) != reply_bytes) {
+        fail(FAIL_STREAM_REPLIES, "stream in one call: reply bytes");
+    }
+    mark = mcu_stack_probe_begin();
+    (void)mcu_ticks_transmit(&board, out, sizeof out);
+    stack_max(&stack_transmit, mcu_stack_probe_end(mark));
+    if (fnv_bytes(FNV_INIT, out, reply_bytes) != h) {
+        fail(FAIL_STREAM_REPLIES, "stream in one call: replies differ from byte by byte");
+    }
+    xgo_board_counters(&board, counters);
+    if (counters[XGO_DIAG_FRAMES_OK] != 2u * frames_before) {
+        fail(FAIL_COUNTERS, "stream in one call: frames_ok");
+    }
+
+    if (counting) {
+        uint32_t whole = insns_of(ticks);
+        l_begin(&l, "COST stream: ");
+        l_u32(&l, (uint32_t)n);
+        l_str(&l, " bytes, ");
+        l_u32(&l, 6u * STREAM_REPEATS);
+        l_str(&l, " frames (per repeat: write vx, write vyaw, write 6 body bytes, read 12 "
+                  "joints, read battery, read yaw float)");
+        l_end(&l);
+        print_stats("xgo_board_receive, 1 byte per call, every byte", &per_byte);
+        print_stats("xgo_board_receive, 1 byte per call, a frame's last byte (apply/answer)",
+                    &last_byte);
+        print_stats("xgo_board_receive, 1 byte per call, other bytes", &other_byte);
+        print_stats("xgo_board_transmit, one reply (9..20 bytes) per call", &tx);
+        l_begin(&l, "COST xgo_board_receive, whole stream in one call: ");
+        l_u32(&l, whole);
+        l_str(&l, " instructions = ");
+        l_avg(&l, whole, (uint32_t)n);
+        l_str(&l, " per byte");
+        l_end(&l);
+    }
+}
+
+int main(void)
+{
+    line_t l;
+
+#ifdef MCU_SELFTEST_FAULT
+    {
+        /* run.sh checks the fault path: an unaligned word load is a
+         * HardFault on ARMv6-M, startup.c reports it and exits with 91. */
+        volatile uintptr_t addr = 0x20000001u;
+        counting = (int)*(volatile const uint32_t *)addr;
+    }
+#endif
+    counting = mcu_count_start();
+    calibrate();
+    spec_examples();
+    trot();
+    parse_stream();
+
+    l_begin(&l, "INFO sizeof(xgo_board_t) = ");
+    l_u32(&l, (uint32_t)sizeof(xgo_board_t));
+    l_str(&l, " bytes");
+    l_end(&l);
+    if (counting) {
+        l_begin(&l, "COST stack: deepest use ");
+        l_u32(&l, mcu_stack_used());
+        l_str(&l, " bytes (this program); RAM never touched ");
+        l_u32(&l, mcu_stack_free_min());
+        l_str(&l, " bytes");
+        l_end(&l);
+        l_begin(&l, "COST stack below the caller (incl. 16 bytes of the measuring stub): "
+                    "xgo_board_tick ");
+        l_u32(&l, stack_tick);
+        l_str(&l, ", xgo_board_receive ");
+        l_u32(&l, stack_receive);
+        l_str(&l, ", xgo_board_transmit ");
+        l_u32(&l, stack_transmit);
+        l_str(&l, " bytes");
+        l_end(&l);
+    }
+    sh_write0("PASS\n");
+    return 0;
+}

@@ -1,0 +1,121 @@
+#!/usr/bin/env bash
+# tools/mcu/run.sh - the portable core RUNNING on a Cortex-M0 (docs/mcu.md).
+#
+# Builds tools/mcu/mcu_selftest.c with the core twice: bare metal for a
+# Cortex-M0+ (arm-none-eabi-gcc, own startup and linker script, no C library)
+# and natively for the host (gcc). Runs the first in QEMU's micro:bit (nRF51,
+# Cortex-M0; ARMv6-M like the M0+) with exact instruction counting, the second
+# directly, and requires their RESULT lines to be identical. Prints the
+# instruction counts and the image sizes. Exits non-zero on any failure.
+#
+# Needs: arm-none-eabi-gcc (+ libnewlib-arm-none-eabi for the string.h header
+# the core includes; nothing of newlib is linked), qemu-system-arm, gcc.
+# Environment: XGO_MCU_BUILD (default build-mcu), XGO_MCU_OPT (default -Os).
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+
+out=${XGO_MCU_BUILD:-build-mcu}
+opt=${XGO_MCU_OPT:--Os}
+mcu=tools/mcu
+mkdir -p "$out/obj"
+
+warn=(-std=c99 -Wall -Wextra -Werror -pedantic)
+cpu=(-mcpu=cortex-m0plus -mthumb)
+armflags=("${cpu[@]}" "$opt" -g -ffreestanding -ffunction-sections -fdata-sections -Iinclude -I"$mcu")
+
+echo "== build: Cortex-M0+ image (arm-none-eabi-gcc ${cpu[*]} $opt -ffreestanding -nostdlib)"
+objs=()
+for src in src/core/*.c; do
+  obj="$out/obj/core_$(basename "${src%.c}").o"
+  arm-none-eabi-gcc "${warn[@]}" "${armflags[@]}" -c "$src" -o "$obj"
+  objs+=("$obj")
+done
+for name in measure semihost startup; do
+  arm-none-eabi-gcc "${warn[@]}" "${armflags[@]}" -c "$mcu/$name.c" -o "$out/obj/$name.o"
+  objs+=("$out/obj/$name.o")
+done
+# Our memcpy/memset must not be turned back into calls to themselves.
+arm-none-eabi-gcc "${warn[@]}" "${armflags[@]}" -fno-tree-loop-distribute-patterns \
+  -c "$mcu/libc_min.c" -o "$out/obj/libc_min.o"
+arm-none-eabi-gcc "${cpu[@]}" -c "$mcu/measure.S" -o "$out/obj/measure_s.o"
+objs+=("$out/obj/libc_min.o" "$out/obj/measure_s.o")
+link() { # link ELF MAIN_OBJECT
+  arm-none-eabi-gcc "${cpu[@]}" -nostdlib -nostartfiles -T "$mcu/link.ld" -Wl,--gc-sections \
+    -Wl,-Map="${1%.elf}.map" "$2" "${objs[@]}" -lgcc -o "$1"
+}
+arm-none-eabi-gcc "${warn[@]}" "${armflags[@]}" -c "$mcu/mcu_selftest.c" -o "$out/obj/mcu_selftest.o"
+elf="$out/mcu_selftest.elf"
+link "$elf" "$out/obj/mcu_selftest.o"
+# The same program faulting on purpose: checks the fault handlers' exit.
+arm-none-eabi-gcc "${warn[@]}" "${armflags[@]}" -DMCU_SELFTEST_FAULT -c "$mcu/mcu_selftest.c" \
+  -o "$out/obj/mcu_selftest_fault.o"
+link "$out/mcu_fault.elf" "$out/obj/mcu_selftest_fault.o"
+
+echo "== build: host variant (gcc -O2)"
+host="$out/mcu_selftest_host"
+gcc "${warn[@]}" -O2 -Iinclude -I"$mcu" "$mcu/mcu_selftest.c" "$mcu/host_port.c" src/core/*.c -o "$host"
+
+echo "== sizes"
+arm-none-eabi-size "$elf"
+# Flash/RAM by origin, from the link map (input sections kept after --gc-sections).
+awk '
+  /^Linker script and memory map/ { on = 1; next }
+  !on { next }
+  function hex(s,   v, i, c) {
+    v = 0; s = tolower(substr(s, 3))
+    for (i = 1; i <= length(s); i++) { c = index("0123456789abcdef", substr(s, i, 1)) - 1; v = v * 16 + c }
+    return v
+  }
+  function add(sec, size, file,   who, kind) {
+    if (file ~ /obj\/core_/) who = "core"; else if (file ~ /libgcc\.a/) who = "libgcc"; else who = "harness";
+    if (sec ~ /^\.(isr_vector|text|rodata|ARM\.exidx)/) kind = "flash"; else if (sec ~ /^\.data/) kind = "data"; else if (sec ~ /^\.bss/) kind = "bss"; else return;
+    sum[who, kind] += hex(size)
+  }
+  /^ \.[^ ]+$/ { pending = $1; next }
+  pending != "" && $1 ~ /^0x/ && NF == 3 { add(pending, $2, $3); pending = ""; next }
+  /^ \.[^ ]+ +0x/ && NF == 4 { add($1, $3, $4); pending = ""; next }
+  { pending = "" }
+  END {
+    split("core libgcc harness", who, " ")
+    for (i = 1; i <= 3; i++)
+      printf "  %-8s flash %6d  data %5d  bss %5d bytes\n", who[i], sum[who[i], "flash"] + sum[who[i], "data"], sum[who[i], "data"], sum[who[i], "bss"]
+  }' "$out/mcu_selftest.map"
+
+echo "== run: host"
+"$host" >"$out/host.out"
+grep '^RESULT' "$out/host.out" >"$out/host.result"
+
+qemu() { # qemu ELF: runs it on the micro:bit (Cortex-M0), exact instruction counting
+  timeout 120 qemu-system-arm -M microbit -display none -monitor none -serial none \
+    -icount shift=8 -semihosting-config enable=on,target=native -kernel "$1"
+}
+
+echo "== run: QEMU -M microbit (Cortex-M0), -icount shift=8"
+set +e
+qemu "$elf" >"$out/mcu.out" 2>&1
+rc=$?
+set -e
+cat "$out/mcu.out"
+if [ "$rc" -ne 0 ]; then
+  echo "FAIL: the M0 self test exited with $rc (124 = timeout; startup.c: 90..93 = faults)"
+  exit 1
+fi
+grep '^RESULT' "$out/mcu.out" >"$out/mcu.result"
+
+echo "== run: a HardFault on purpose (expects exit 91 and the report)"
+set +e
+qemu "$out/mcu_fault.elf" >"$out/mcu_fault.out" 2>&1
+rc=$?
+set -e
+cat "$out/mcu_fault.out"; echo
+if [ "$rc" -ne 91 ] || ! grep -q 'FAULT HardFault pc=' "$out/mcu_fault.out"; then
+  echo "FAIL: the fault handler did not report and exit with 91 (got $rc)"
+  exit 1
+fi
+
+echo "== compare: host vs M0 RESULT lines"
+if ! diff -u "$out/host.result" "$out/mcu.result"; then
+  echo "FAIL: the host and the M0 computed different results"
+  exit 1
+fi
+echo "identical: $(wc -l <"$out/mcu.result") RESULT lines (host gcc -O2 x86-64 and Cortex-M0 $opt)"
