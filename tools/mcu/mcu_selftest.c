@@ -172,14 +172,16 @@ static uint32_t fnv_i32(uint32_t h, int32_t v)
 
 typedef struct stats_s {
     uint32_t count, sum, min, max;
+    uint32_t *samples; /* NULL, or room for every value (percentiles) */
 } stats_t;
 
-static void st_init(stats_t *s)
+static void st_init(stats_t *s, uint32_t *samples)
 {
     s->count = 0;
     s->sum = 0;
     s->min = 0xFFFFFFFFu;
     s->max = 0;
+    s->samples = samples;
 }
 
 /* harness overhead in instructions, from calibrate() */
@@ -197,6 +199,9 @@ static uint32_t insns_of(uint32_t ticks)
 static void st_add(stats_t *s, uint32_t ticks)
 {
     uint32_t v = insns_of(ticks);
+    if (s->samples != NULL) {
+        s->samples[s->count] = v;
+    }
     s->count++;
     s->sum += v;
     if (v < s->min) {
@@ -238,6 +243,35 @@ static void print_stats(const char *what, const stats_t *s)
     l_u32(&l, s->count);
     l_str(&l, ")");
     l_end(&l);
+    if (s->samples != NULL) {
+        uint32_t i, j, over = 0;
+        for (i = 1; i < s->count; i++) { /* insertion sort */
+            uint32_t v = s->samples[i];
+            for (j = i; j > 0 && s->samples[j - 1] > v; j--) {
+                s->samples[j] = s->samples[j - 1];
+            }
+            s->samples[j] = v;
+        }
+        for (i = 0; i < s->count; i++) {
+            if (2u * s->samples[i] > 3u * s->samples[s->count / 2u]) {
+                over++;
+            }
+        }
+        l_begin(&l, "COST ");
+        l_str(&l, what);
+        l_str(&l, ": p50 ");
+        l_u32(&l, s->samples[s->count / 2u]);
+        l_str(&l, " p90 ");
+        l_u32(&l, s->samples[s->count * 9u / 10u]);
+        l_str(&l, " p99 ");
+        l_u32(&l, s->samples[s->count * 99u / 100u]);
+        l_str(&l, "; ");
+        l_u32(&l, over);
+        l_str(&l, " of ");
+        l_u32(&l, s->count);
+        l_str(&l, " over 1.5 x p50");
+        l_end(&l);
+    }
 }
 
 /* The harness costs a fixed number of instructions (BL, one LDR); an empty
@@ -462,6 +496,8 @@ static uint32_t wire_digest(const char *tag, uint32_t now_ms)
     return h;
 }
 
+static uint32_t trot_samples[MEASURED_TICKS];
+
 static void trot(void)
 {
     stats_t warm, steady;
@@ -475,8 +511,8 @@ static void trot(void)
     write_reg(XGO_REG_BODY_ROLL, 0xA0, 0); /* body pose on top */
     write_reg(XGO_REG_BODY_Z, 0x60, 0);
     write_reg(XGO_REG_PERIOD_PITCH, 0x40, 0);
-    st_init(&warm);
-    st_init(&steady);
+    st_init(&warm, NULL);
+    st_init(&steady, trot_samples);
     mark = mcu_stack_probe_begin();
     for (t = 0; t < WARMUP_TICKS; t++) {
         st_add(&warm, mcu_ticks_tick(&board));
@@ -503,7 +539,7 @@ static void trot(void)
 
     /* Standing idle. */
     xgo_board_init(&board, NULL);
-    st_init(&steady);
+    st_init(&steady, NULL);
     for (t = 0; t < 200u; t++) {
         st_add(&steady, mcu_ticks_tick(&board));
     }
@@ -512,7 +548,7 @@ static void trot(void)
 
     /* Preset action 24 (naughty, 7 s) to its end. */
     write_reg(XGO_REG_ACTION, 24, 400);
-    st_init(&steady);
+    st_init(&steady, NULL);
     mark = mcu_stack_probe_begin();
     for (t = 0; t < xgo_action_duration_ticks(24); t++) {
         st_add(&steady, mcu_ticks_tick(&board));
@@ -577,10 +613,10 @@ static void parse_stream(void)
 
     n = build_stream(&reads, &reply_bytes);
     xgo_board_init(&board, NULL);
-    st_init(&per_byte);
-    st_init(&last_byte);
-    st_init(&other_byte);
-    st_init(&tx);
+    st_init(&per_byte, NULL);
+    st_init(&last_byte, NULL);
+    st_init(&other_byte, NULL);
+    st_init(&tx, NULL);
 
     /* Byte by byte, as a UART RX interrupt would; 1 ms per frame. */
     h = FNV_INIT;
