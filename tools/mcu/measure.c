@@ -21,6 +21,10 @@ int mcu_count_start(void)
 
 uint32_t mcu_ticks_to_insns(uint32_t ticks)
 {
+#ifdef MCU_MPS2_AN385
+    return (ticks * 5u + 8u) / 16u;
+#else
     /* ticks < 2^24, so ticks * 125 + 256 < 2^31 */
     return (ticks * 125u + 256u) / 512u;
+#endif
 }

@@ -5,8 +5,10 @@
  * instruction takes 256 ns of virtual time and SysTick (16 MHz CPU clock on
  * the microbit) advances 4.096 ticks per instruction, so
  *   instructions = round(ticks * 125 / 512)
- * (docs/mcu.md; ../shared/reference/cortex-m-qemu.md). The 24-bit counter
- * limits one interval to about 4.1 M instructions.
+ * (docs/mcu.md). The 24-bit counter limits one interval to about 4.1 M
+ * instructions. Built with -DMCU_MPS2_AN385 (the Cortex-M3 comparison run,
+ * -M mps2-an385 -icount shift=7, SysTick at 25 MHz: 3.2 ticks per
+ * instruction): instructions = round(ticks * 5 / 16), about 5.2 M at most.
  *
  * The mcu_ticks_* stubs (measure.S) read SysTick, call the function, read it
  * again and return the elapsed ticks. The fixed harness overhead is
@@ -28,7 +30,7 @@
  * 0 on the host. */
 int mcu_count_start(void);
 
-/* Ticks -> instructions for -icount shift=8 on a 16 MHz SysTick. */
+/* Ticks -> instructions (see above). */
 uint32_t mcu_ticks_to_insns(uint32_t ticks);
 
 /* SysTick ticks across one call. */

@@ -10,20 +10,28 @@
 #
 # Needs: arm-none-eabi-gcc (+ libnewlib-arm-none-eabi for the string.h header
 # the core includes; nothing of newlib is linked), qemu-system-arm, gcc.
-# Environment: XGO_MCU_BUILD (default build-mcu), XGO_MCU_OPT (default -Os).
+# Environment: XGO_MCU_BUILD (default build-mcu, build-mcu-m3), XGO_MCU_OPT (default -Os),
+# XGO_MCU_TARGET: m0 (default: built for a Cortex-M0+, run on the micro:bit's
+# M0) or m3 (for comparison: built for and run on a Cortex-M3, mps2-an385).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 
-out=${XGO_MCU_BUILD:-build-mcu}
+target=${XGO_MCU_TARGET:-m0}
+if [ "$target" = m0 ]; then out=${XGO_MCU_BUILD:-build-mcu}; else out=${XGO_MCU_BUILD:-build-mcu-$target}; fi
 opt=${XGO_MCU_OPT:--Os}
 mcu=tools/mcu
 mkdir -p "$out/obj"
 
 warn=(-std=c99 -Wall -Wextra -Werror -pedantic)
-cpu=(-mcpu=cortex-m0plus -mthumb)
-armflags=("${cpu[@]}" "$opt" -g -ffreestanding -ffunction-sections -fdata-sections -Iinclude -I"$mcu")
+case "$target" in
+  m0) cpu=(-mcpu=cortex-m0plus -mthumb); defs=(); machine=microbit; shift=8 ;;
+  m3) cpu=(-mcpu=cortex-m3 -mthumb); defs=(-DMCU_MPS2_AN385); machine=mps2-an385; shift=7 ;;
+  *) echo "XGO_MCU_TARGET must be m0 or m3" >&2; exit 2 ;;
+esac
+armflags=("${cpu[@]}" "$opt" "${defs[@]}" -g -ffreestanding -ffunction-sections -fdata-sections
+  -Iinclude -I"$mcu")
 
-echo "== build: Cortex-M0+ image (arm-none-eabi-gcc ${cpu[*]} $opt -ffreestanding -nostdlib)"
+echo "== build: bare-metal image (arm-none-eabi-gcc ${cpu[*]} $opt -ffreestanding -nostdlib)"
 objs=()
 for src in src/core/*.c; do
   obj="$out/obj/core_$(basename "${src%.c}").o"
@@ -85,19 +93,19 @@ echo "== run: host"
 "$host" >"$out/host.out"
 grep '^RESULT' "$out/host.out" >"$out/host.result"
 
-qemu() { # qemu ELF: runs it on the micro:bit (Cortex-M0), exact instruction counting
-  timeout 120 qemu-system-arm -M microbit -display none -monitor none -serial none \
-    -icount shift=8 -semihosting-config enable=on,target=native -kernel "$1"
+qemu() { # qemu ELF: runs it with exact instruction counting (measure.h)
+  timeout 120 qemu-system-arm -M "$machine" -display none -monitor none -serial none \
+    -icount shift="$shift" -semihosting-config enable=on,target=native -kernel "$1"
 }
 
-echo "== run: QEMU -M microbit (Cortex-M0), -icount shift=8"
+echo "== run: QEMU -M $machine, -icount shift=$shift"
 set +e
 qemu "$elf" >"$out/mcu.out" 2>&1
 rc=$?
 set -e
 cat "$out/mcu.out"
 if [ "$rc" -ne 0 ]; then
-  echo "FAIL: the M0 self test exited with $rc (124 = timeout; startup.c: 90..93 = faults)"
+  echo "FAIL: the bare-metal self test exited with $rc (124 = timeout; startup.c: 90..93 = faults)"
   exit 1
 fi
 grep '^RESULT' "$out/mcu.out" >"$out/mcu.result"
@@ -113,9 +121,9 @@ if [ "$rc" -ne 91 ] || ! grep -q 'FAULT HardFault pc=' "$out/mcu_fault.out"; the
   exit 1
 fi
 
-echo "== compare: host vs M0 RESULT lines"
+echo "== compare: host vs $machine RESULT lines"
 if ! diff -u "$out/host.result" "$out/mcu.result"; then
-  echo "FAIL: the host and the M0 computed different results"
+  echo "FAIL: the host and the MCU computed different results"
   exit 1
 fi
-echo "identical: $(wc -l <"$out/mcu.result") RESULT lines (host gcc -O2 x86-64 and Cortex-M0 $opt)"
+echo "identical: $(wc -l <"$out/mcu.result") RESULT lines (host gcc -O2, ${cpu[0]#-mcpu=} $opt on $machine)"

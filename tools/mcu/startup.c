@@ -39,7 +39,9 @@ __attribute__((section(".isr_vector"), used)) static const vectors_t vectors = {
         Reset_Handler,     /* 1 */
         NMI_Handler,       /* 2 */
         HardFault_Handler, /* 3 */
-        0, 0, 0, 0, 0, 0, 0, /* 4..10 reserved on ARMv6-M */
+        0, 0, 0, 0, 0, 0, 0, /* 4..10 reserved on ARMv6-M (on an M3, 4..6 are
+                                 MemManage/BusFault/UsageFault: disabled at
+                                 reset, they escalate to HardFault) */
         System_Handler,    /* 11 SVCall */
         0, 0,              /* 12, 13 reserved */
         System_Handler,    /* 14 PendSV */
