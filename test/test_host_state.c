@@ -15,8 +15,6 @@
  */
 #include <dirent.h>
 #include <errno.h>
-#include <fcntl.h>
-#include <poll.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -25,10 +23,12 @@
 #include <sys/types.h>
 #include <sys/wait.h>
 #include <termios.h>
-#include <time.h>
 #include <unistd.h>
 
+#include "emu_process.h"
+#include "serial_port.h"
 #include "state_file.h"
+#include "test_clock.h"
 #include "unity.h"
 #include "xgo/board.h"
 #include "xgo/protocol.h"
@@ -48,22 +48,6 @@ static char g_state[128]; /* g_dir/state */
 static char g_err[128];   /* g_dir/emu.err: the emulator's stderr */
 
 /* ------------------------------------------------------------ helpers */
-
-static long long now_us(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (long long)ts.tv_sec * 1000000 + ts.tv_nsec / 1000;
-}
-
-static void sleep_us(long us)
-{
-    struct timespec ts;
-    ts.tv_sec = us / 1000000;
-    ts.tv_nsec = (us % 1000000) * 1000L;
-    while (nanosleep(&ts, &ts) != 0 && errno == EINTR) {
-    }
-}
 
 /* Reads a whole (small) file; returns its length, -1 if it cannot be read. */
 static long read_file(const char *path, char *buf, size_t size)
@@ -164,94 +148,34 @@ static void assert_nv_equal(const xgo_board_nv_t *want, const xgo_board_nv_t *go
 
 /* ------------------------------------------------------------ the child */
 
-typedef struct emu_s {
-    pid_t pid;
-    int out_fd;
-    char pty[256];
-} emu_t;
-
-static emu_t g_emu = {-1, -1, ""};
+/* The child process and the port come from test/support; the assertions on
+ * them are here. */
+static xgo_test_emu_t g_emu; /* stderr goes to the file g_err; main() inits */
 static int g_port = -1;
 
 /* Starts xgo-emu with argv[1..] = args (NULL-terminated), stderr to g_err. */
 static void emu_spawn(const char *const *args)
 {
-    const char *argv[32];
-    size_t argc = 0;
-    int out_pipe[2];
-    argv[argc++] = XGO_EMU_PATH;
-    while (*args != NULL && argc < 31) {
-        argv[argc++] = *args++;
-    }
-    argv[argc] = NULL;
-    TEST_ASSERT_EQUAL_INT(0, pipe(out_pipe));
-    g_emu.pid = fork();
-    TEST_ASSERT_TRUE_MESSAGE(g_emu.pid >= 0, "fork failed");
-    if (g_emu.pid == 0) {
-        int err = open(g_err, O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        dup2(out_pipe[1], STDOUT_FILENO);
-        if (err >= 0) {
-            dup2(err, STDERR_FILENO);
-        }
-        close(out_pipe[0]);
-        close(out_pipe[1]);
-        execv(XGO_EMU_PATH, (char *const *)argv);
-        _exit(127);
-    }
-    close(out_pipe[1]);
-    g_emu.out_fd = out_pipe[0];
-    g_emu.pty[0] = '\0';
+    TEST_ASSERT_EQUAL_INT_MESSAGE(0, xgo_test_emu_spawn(&g_emu, XGO_EMU_PATH, args, g_err),
+                                  "pipe or fork failed");
 }
 
 /* Reads stdout up to the first newline (the pty path); 0 if the child
  * closed stdout first (it exited). */
 static int emu_read_pty_line(void)
 {
-    long long deadline = now_us() + EMU_START_TIMEOUT_MS * 1000LL;
-    size_t len = 0;
-    for (;;) {
-        struct pollfd pfd;
-        char c;
-        ssize_t n;
-        TEST_ASSERT_TRUE_MESSAGE(now_us() < deadline, "no pty path on xgo-emu's stdout");
-        pfd.fd = g_emu.out_fd;
-        pfd.events = POLLIN;
-        if (poll(&pfd, 1, 50) <= 0) {
-            continue;
-        }
-        n = read(g_emu.out_fd, &c, 1);
-        if (n == 0) {
-            return 0;
-        }
-        if (n < 0) {
-            continue;
-        }
-        if (c == '\n') {
-            g_emu.pty[len] = '\0';
-            return 1;
-        }
-        TEST_ASSERT_TRUE(len + 1 < sizeof g_emu.pty);
-        g_emu.pty[len++] = c;
-    }
+    int r = xgo_test_emu_read_pty(&g_emu, EMU_START_TIMEOUT_MS);
+    TEST_ASSERT_TRUE_MESSAGE(r != XGO_TEST_EMU_PTY_TIMEOUT, "no pty path on xgo-emu's stdout");
+    TEST_ASSERT_TRUE(r != XGO_TEST_EMU_PTY_TOO_LONG);
+    return r == XGO_TEST_EMU_PTY_OK;
 }
 
 /* Waits (bounded) for the child; returns its wait status. */
 static int emu_wait(void)
 {
-    long long deadline = now_us() + EMU_EXIT_TIMEOUT_MS * 1000LL;
-    int status = 0;
-    for (;;) {
-        pid_t r = waitpid(g_emu.pid, &status, WNOHANG);
-        if (r == g_emu.pid) {
-            break;
-        }
-        TEST_ASSERT_TRUE_MESSAGE(now_us() < deadline, "xgo-emu did not exit");
-        sleep_us(2000);
-    }
-    g_emu.pid = -1;
-    close(g_emu.out_fd);
-    g_emu.out_fd = -1;
-    return status;
+    TEST_ASSERT_TRUE_MESSAGE(xgo_test_emu_wait(&g_emu, EMU_EXIT_TIMEOUT_MS),
+                             "xgo-emu did not exit");
+    return g_emu.status;
 }
 
 static void emu_start(const char *const *args)
@@ -294,33 +218,16 @@ static int emu_run_to_exit(const char *const *args, char *err, size_t size)
 
 static int port_open(void)
 {
-    int fd = open(g_emu.pty, O_RDWR | O_NOCTTY | O_NONBLOCK);
+    int fd = xgo_test_port_open(g_emu.pty);
     TEST_ASSERT_TRUE_MESSAGE(fd >= 0, "cannot open the emulator's pty");
     tcflush(fd, TCIOFLUSH);
     return fd;
 }
 
-static void port_write(int fd, const uint8_t *bytes, size_t n)
-{
-    long long deadline = now_us() + REPLY_TIMEOUT_MS * 1000LL;
-    size_t done = 0;
-    while (done < n) {
-        ssize_t w = write(fd, bytes + done, n - done);
-        if (w > 0) {
-            done += (size_t)w;
-            continue;
-        }
-        TEST_ASSERT_TRUE_MESSAGE(now_us() < deadline, "write to the pty stalled");
-        sleep_us(500);
-    }
-}
-
 static void write_regs(int fd, uint8_t addr, const void *values, size_t n)
 {
-    uint8_t frame[XGO_FRAME_MAX_LEN];
-    size_t len = xgo_frame_encode(XGO_TYPE_WRITE, addr, values, n, frame, sizeof frame);
-    TEST_ASSERT_TRUE(len > 0);
-    port_write(fd, frame, len);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(0, xgo_test_write_regs(fd, addr, values, n, REPLY_TIMEOUT_MS),
+                                  "write frame not built, or the pty failed or stalled");
 }
 
 static void write_reg(int fd, uint8_t addr, uint8_t value)
@@ -330,27 +237,11 @@ static void write_reg(int fd, uint8_t addr, uint8_t value)
 
 static void read_regs(int fd, uint8_t addr, uint8_t count, uint8_t *values)
 {
-    uint8_t req[XGO_READ_REQUEST_LEN];
     uint8_t reply[XGO_FRAME_MAX_LEN];
     size_t want = (size_t)count + XGO_FRAME_OVERHEAD;
-    size_t got = 0;
-    long long deadline = now_us() + REPLY_TIMEOUT_MS * 1000LL;
-    xgo_frame_encode(XGO_TYPE_READ, addr, &count, 1, req, sizeof req);
+    size_t got;
     tcflush(fd, TCIFLUSH);
-    port_write(fd, req, sizeof req);
-    while (got < want && now_us() < deadline) {
-        struct pollfd pfd;
-        ssize_t r;
-        pfd.fd = fd;
-        pfd.events = POLLIN;
-        if (poll(&pfd, 1, 20) <= 0) {
-            continue;
-        }
-        r = read(fd, reply + got, want - got);
-        if (r > 0) {
-            got += (size_t)r;
-        }
-    }
+    got = xgo_test_read_reply(fd, addr, count, reply, REPLY_TIMEOUT_MS);
     TEST_ASSERT_EQUAL_INT_MESSAGE((int)want, (int)got, "incomplete reply");
     TEST_ASSERT_EQUAL_HEX8(addr, reply[4]);
     memcpy(values, reply + 5, count);
@@ -391,15 +282,7 @@ void tearDown(void)
         close(g_port);
         g_port = -1;
     }
-    if (g_emu.pid > 0) {
-        kill(g_emu.pid, SIGKILL);
-        waitpid(g_emu.pid, NULL, 0);
-        g_emu.pid = -1;
-    }
-    if (g_emu.out_fd >= 0) {
-        close(g_emu.out_fd);
-        g_emu.out_fd = -1;
-    }
+    xgo_test_emu_kill(&g_emu);
     remove_dir_contents();
     rmdir(g_dir);
 }
@@ -593,11 +476,11 @@ static void test_name_and_zero_offsets_survive_a_restart(void)
     g_port = port_open();
     write_regs(g_port, 0x13, name, strlen(name));
     write_reg(g_port, 0x04, 1); /* calibration: joints limp where they stand */
-    sleep_us(100000);
+    xgo_test_sleep_us(100000);
     write_reg(g_port, 0x21, 1); /* record: the standing angles become zero */
-    sleep_us(100000);
+    xgo_test_sleep_us(100000);
     write_reg(g_port, 0x04, 0);
-    sleep_us(100000);
+    xgo_test_sleep_us(100000);
     close(g_port);
     g_port = -1;
     emu_stop();
@@ -616,7 +499,7 @@ static void test_name_and_zero_offsets_survive_a_restart(void)
     /* A rename makes the board save again what it holds: the offsets it
      * was started with. */
     write_regs(g_port, 0x13, "Rex-02", 6);
-    sleep_us(50000);
+    xgo_test_sleep_us(50000);
     close(g_port);
     g_port = -1;
     emu_stop();
@@ -642,7 +525,7 @@ static int name_in(const char *name, char (*names)[XGO_BT_NAME_LEN + 1], int n)
  * every name sent. */
 static int rename_burst(int round, long delay_us, char (*names)[XGO_BT_NAME_LEN + 1], int max)
 {
-    long long end = now_us() + delay_us;
+    long long end = xgo_test_now_us() + delay_us;
     int n = 0;
     do {
         uint8_t frame[32];
@@ -656,8 +539,8 @@ static int rename_burst(int round, long delay_us, char (*names)[XGO_BT_NAME_LEN 
                 n++; /* a partial write is at worst a name never sent whole */
             }
         }
-        sleep_us(200);
-    } while (now_us() < end);
+        xgo_test_sleep_us(200);
+    } while (xgo_test_now_us() < end);
     return n;
 }
 
@@ -791,19 +674,19 @@ static void test_ground_tilt_and_self_levelling(void)
 
     emu_start(args);
     g_port = port_open();
-    sleep_us(100000);
+    xgo_test_sleep_us(100000);
     roll = read_angle(g_port, 0x62);
     pitch = read_angle(g_port, 0x63);
     TEST_ASSERT_FLOAT_WITHIN(0.2f, 10.0f, roll);
     TEST_ASSERT_FLOAT_WITHIN(0.2f, -4.0f, pitch);
     write_reg(g_port, 0x61, 1);
-    sleep_us(1200000);
+    xgo_test_sleep_us(1200000);
     roll = read_angle(g_port, 0x62);
     pitch = read_angle(g_port, 0x63);
     TEST_ASSERT_FLOAT_WITHIN(1.0f, 0.0f, roll);
     TEST_ASSERT_FLOAT_WITHIN(1.0f, 0.0f, pitch);
     write_reg(g_port, 0x61, 0); /* and back onto the slope */
-    sleep_us(1200000);
+    xgo_test_sleep_us(1200000);
     TEST_ASSERT_FLOAT_WITHIN(0.5f, 10.0f, read_angle(g_port, 0x62));
     close(g_port);
     g_port = -1;
@@ -811,7 +694,7 @@ static void test_ground_tilt_and_self_levelling(void)
 
     emu_start(args_fine);
     g_port = port_open();
-    sleep_us(50000);
+    xgo_test_sleep_us(50000);
     TEST_ASSERT_FLOAT_WITHIN(0.01f, -2.5f, read_angle(g_port, 0x62));
     TEST_ASSERT_FLOAT_WITHIN(0.01f, 7.125f, read_angle(g_port, 0x63));
     close(g_port);
@@ -822,6 +705,7 @@ static void test_ground_tilt_and_self_levelling(void)
 int main(void)
 {
     signal(SIGPIPE, SIG_IGN);
+    xgo_test_emu_init(&g_emu);
     UNITY_BEGIN();
     RUN_TEST(test_format_is_the_documented_text);
     RUN_TEST(test_format_parse_round_trip);

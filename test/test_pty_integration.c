@@ -5,10 +5,10 @@
  * the way the vendor's pyserial-based library does, and stops it with a
  * signal. This is the one test that waits in real time; every wait is
  * bounded, so a broken emulator fails the test instead of hanging it.
+ * The child process and the port come from test/support; the assertions on
+ * them are here.
  */
 #include <errno.h>
-#include <fcntl.h>
-#include <poll.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -17,9 +17,11 @@
 #include <sys/types.h>
 #include <sys/wait.h>
 #include <termios.h>
-#include <time.h>
 #include <unistd.h>
 
+#include "emu_process.h"
+#include "serial_port.h"
+#include "test_clock.h"
 #include "unity.h"
 #include "xgo/board.h"
 #include "xgo/protocol.h"
@@ -31,181 +33,39 @@
 #define EMU_START_TIMEOUT_MS 5000
 #define EMU_EXIT_TIMEOUT_MS 5000
 #define REPLY_TIMEOUT_MS 1000 /* the vendor library polls for replies for 1 s */
-#define ERR_CAPTURE_BYTES 65536
 
 /* ------------------------------------------------------------- the child */
 
-typedef struct emu_s {
-    pid_t pid;       /* -1: none running */
-    int out_fd;      /* its stdout (we read the first line) */
-    int err_fd;      /* its stderr, captured into err */
-    char slave[256]; /* first stdout line */
-    char out[4096];  /* stdout text */
-    size_t out_len;
-    char err[ERR_CAPTURE_BYTES];
-    size_t err_len;
-    int status; /* waitpid status once reaped */
-} emu_t;
-
-static emu_t g_emu;
+static xgo_test_emu_t g_emu; /* stdout and stderr captured (err: trace, counters) */
 static int g_port = -1;
 static char g_dir[64];
 static char g_link[128];
 
-static long long now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (long long)ts.tv_sec * 1000 + ts.tv_nsec / 1000000;
-}
-
-static double now_us_f(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec * 1e6 + (double)ts.tv_nsec / 1e3;
-}
-
-static void sleep_ms(long ms)
-{
-    struct timespec ts;
-    ts.tv_sec = ms / 1000;
-    ts.tv_nsec = (ms % 1000) * 1000000L;
-    while (nanosleep(&ts, &ts) != 0 && errno == EINTR) {
-    }
-}
-
-/* Appends whatever is readable now on fd (non-blocking) to buf. Returns 0 at
- * EOF, 1 otherwise. */
-static int drain_fd(int fd, char *buf, size_t cap, size_t *len)
-{
-    for (;;) {
-        char tmp[4096];
-        ssize_t n = read(fd, tmp, sizeof tmp);
-        if (n > 0) {
-            size_t keep = (size_t)n;
-            if (keep > cap - 1 - *len) {
-                keep = cap - 1 - *len;
-            }
-            memcpy(buf + *len, tmp, keep);
-            *len += keep;
-            buf[*len] = '\0';
-            continue;
-        }
-        if (n == 0) {
-            return 0;
-        }
-        if (errno == EINTR) {
-            continue;
-        }
-        return 1; /* EAGAIN */
-    }
-}
-
-static void emu_drain(void)
-{
-    if (g_emu.err_fd >= 0 && !drain_fd(g_emu.err_fd, g_emu.err, sizeof g_emu.err, &g_emu.err_len)) {
-        close(g_emu.err_fd);
-        g_emu.err_fd = -1;
-    }
-    if (g_emu.out_fd >= 0 && !drain_fd(g_emu.out_fd, g_emu.out, sizeof g_emu.out, &g_emu.out_len)) {
-        close(g_emu.out_fd);
-        g_emu.out_fd = -1;
-    }
-}
-
 /* Starts xgo-emu with argv[1..] = args (NULL-terminated). */
 static void emu_spawn(const char *const *args)
 {
-    int out_pipe[2];
-    int err_pipe[2];
-    const char *argv[32];
-    size_t argc = 0;
-
-    argv[argc++] = XGO_EMU_PATH;
-    while (*args != NULL && argc < 31) {
-        argv[argc++] = *args++;
-    }
-    argv[argc] = NULL;
-
-    TEST_ASSERT_EQUAL_INT(0, pipe(out_pipe));
-    TEST_ASSERT_EQUAL_INT(0, pipe(err_pipe));
-    g_emu.pid = fork();
-    TEST_ASSERT_TRUE_MESSAGE(g_emu.pid >= 0, "fork failed");
-    if (g_emu.pid == 0) {
-        dup2(out_pipe[1], STDOUT_FILENO);
-        dup2(err_pipe[1], STDERR_FILENO);
-        close(out_pipe[0]);
-        close(out_pipe[1]);
-        close(err_pipe[0]);
-        close(err_pipe[1]);
-        execv(XGO_EMU_PATH, (char *const *)argv);
-        _exit(127);
-    }
-    close(out_pipe[1]);
-    close(err_pipe[1]);
-    g_emu.out_fd = out_pipe[0];
-    g_emu.err_fd = err_pipe[0];
-    fcntl(g_emu.out_fd, F_SETFL, O_NONBLOCK);
-    fcntl(g_emu.err_fd, F_SETFL, O_NONBLOCK);
-    fcntl(g_emu.out_fd, F_SETFD, FD_CLOEXEC);
-    fcntl(g_emu.err_fd, F_SETFD, FD_CLOEXEC);
-}
-
-/* Waits (bounded) for the child to exit; returns 1 if it did. */
-static int emu_wait_exit(long timeout_ms)
-{
-    long long deadline = now_ms() + timeout_ms;
-    while (g_emu.pid > 0) {
-        int status;
-        pid_t r = waitpid(g_emu.pid, &status, WNOHANG);
-        emu_drain();
-        if (r == g_emu.pid) {
-            g_emu.status = status;
-            g_emu.pid = -1;
-            break;
-        }
-        if (now_ms() > deadline) {
-            return 0;
-        }
-        sleep_ms(5);
-    }
-    /* Collect the rest of its output (EOF comes quickly once it is gone). */
-    deadline = now_ms() + 1000;
-    while ((g_emu.err_fd >= 0 || g_emu.out_fd >= 0) && now_ms() < deadline) {
-        emu_drain();
-        sleep_ms(2);
-    }
-    return 1;
+    TEST_ASSERT_EQUAL_INT_MESSAGE(0, xgo_test_emu_spawn(&g_emu, XGO_EMU_PATH, args, NULL),
+                                  "pipe or fork failed");
 }
 
 /* Runs xgo-emu to completion (for options that make it exit at once). */
 static void emu_run_to_exit(const char *const *args)
 {
     emu_spawn(args);
-    TEST_ASSERT_TRUE_MESSAGE(emu_wait_exit(EMU_EXIT_TIMEOUT_MS), "xgo-emu did not exit");
+    TEST_ASSERT_TRUE_MESSAGE(xgo_test_emu_wait(&g_emu, EMU_EXIT_TIMEOUT_MS),
+                             "xgo-emu did not exit");
     TEST_ASSERT_TRUE(WIFEXITED(g_emu.status));
 }
 
 /* Starts xgo-emu and waits for its first stdout line (the pty path). */
 static void emu_start(const char *const *args)
 {
-    long long deadline;
-    char *nl;
+    int r;
     emu_spawn(args);
-    deadline = now_ms() + EMU_START_TIMEOUT_MS;
-    while ((nl = strchr(g_emu.out, '\n')) == NULL) {
-        struct pollfd pfd;
-        TEST_ASSERT_TRUE_MESSAGE(now_ms() < deadline, "no pty path on xgo-emu's stdout");
-        TEST_ASSERT_TRUE_MESSAGE(g_emu.out_fd >= 0, "xgo-emu closed stdout without a path");
-        pfd.fd = g_emu.out_fd;
-        pfd.events = POLLIN;
-        poll(&pfd, 1, 50);
-        emu_drain();
-    }
-    TEST_ASSERT_TRUE((size_t)(nl - g_emu.out) < sizeof g_emu.slave);
-    memcpy(g_emu.slave, g_emu.out, (size_t)(nl - g_emu.out));
-    g_emu.slave[nl - g_emu.out] = '\0';
+    r = xgo_test_emu_read_pty(&g_emu, EMU_START_TIMEOUT_MS);
+    TEST_ASSERT_TRUE_MESSAGE(r != XGO_TEST_EMU_PTY_TIMEOUT, "no pty path on xgo-emu's stdout");
+    TEST_ASSERT_TRUE_MESSAGE(r != XGO_TEST_EMU_PTY_CLOSED, "xgo-emu closed stdout without a path");
+    TEST_ASSERT_EQUAL_INT(XGO_TEST_EMU_PTY_OK, r);
 }
 
 /* The usual case: serve with --link g_link plus extra options. */
@@ -228,7 +88,7 @@ static void emu_start_linked(const char *extra1, const char *extra2)
     len = readlink(g_link, target, sizeof target - 1);
     TEST_ASSERT_TRUE_MESSAGE(len > 0, "--link did not create the symlink");
     target[len] = '\0';
-    TEST_ASSERT_EQUAL_STRING(g_emu.slave, target);
+    TEST_ASSERT_EQUAL_STRING(g_emu.pty, target);
 }
 
 /* Stops the running emulator with sig and checks a clean exit: status 0,
@@ -237,7 +97,8 @@ static void emu_stop_cleanly(int sig)
 {
     TEST_ASSERT_TRUE(g_emu.pid > 0);
     TEST_ASSERT_EQUAL_INT(0, kill(g_emu.pid, sig));
-    TEST_ASSERT_TRUE_MESSAGE(emu_wait_exit(EMU_EXIT_TIMEOUT_MS), "xgo-emu ignored the signal");
+    TEST_ASSERT_TRUE_MESSAGE(xgo_test_emu_wait(&g_emu, EMU_EXIT_TIMEOUT_MS),
+                             "xgo-emu ignored the signal");
     TEST_ASSERT_TRUE_MESSAGE(WIFEXITED(g_emu.status), "xgo-emu did not exit normally");
     TEST_ASSERT_EQUAL_INT(0, WEXITSTATUS(g_emu.status));
     TEST_ASSERT_NOT_NULL_MESSAGE(strstr(g_emu.err, "counters at exit"), "no counters at exit");
@@ -252,26 +113,11 @@ static void assert_link_gone(void)
 
 /* -------------------------------------------------------------- the host */
 
-/* Opens the port the way pyserial does: non-blocking, raw 8N1, no flow
- * control, VMIN = VTIME = 0, input flushed. */
+/* Opens the port the way pyserial does (see serial_port.h). */
 static int port_open_like_pyserial(const char *path, speed_t speed)
 {
-    struct termios tio;
-    int fd = open(path, O_RDWR | O_NOCTTY | O_NONBLOCK);
-    TEST_ASSERT_TRUE_MESSAGE(fd >= 0, "cannot open the emulator's port");
-    TEST_ASSERT_EQUAL_INT(0, tcgetattr(fd, &tio));
-    tio.c_cflag |= (tcflag_t)(CLOCAL | CREAD);
-    tio.c_lflag &= (tcflag_t) ~(ICANON | ECHO | ECHOE | ECHOK | ECHONL | ISIG | IEXTEN);
-    tio.c_oflag &= (tcflag_t) ~(OPOST | ONLCR | OCRNL);
-    tio.c_iflag &= (tcflag_t) ~(INLCR | IGNCR | ICRNL | IGNBRK | INPCK | ISTRIP | IXON | IXOFF);
-    tio.c_cflag &= (tcflag_t) ~(CSIZE | PARENB | CSTOPB);
-    tio.c_cflag |= CS8;
-    tio.c_cc[VMIN] = 0;
-    tio.c_cc[VTIME] = 0;
-    cfsetispeed(&tio, speed);
-    cfsetospeed(&tio, speed);
-    TEST_ASSERT_EQUAL_INT(0, tcsetattr(fd, TCSANOW, &tio));
-    tcflush(fd, TCIFLUSH);
+    int fd = xgo_test_port_open_like_pyserial(path, speed);
+    TEST_ASSERT_TRUE_MESSAGE(fd >= 0, "cannot open and configure the emulator's port");
     return fd;
 }
 
@@ -279,77 +125,28 @@ static int port_open_like_pyserial(const char *path, speed_t speed)
  * configures the line sees whatever xgo-emu set up. */
 static int port_open_untouched(const char *path)
 {
-    int fd = open(path, O_RDWR | O_NOCTTY | O_NONBLOCK);
+    int fd = xgo_test_port_open(path);
     TEST_ASSERT_TRUE_MESSAGE(fd >= 0, "cannot open the emulator's port");
     return fd;
 }
 
 static void port_write(int fd, const uint8_t *bytes, size_t n)
 {
-    long long deadline = now_ms() + REPLY_TIMEOUT_MS;
-    size_t done = 0;
-    while (done < n) {
-        ssize_t w = write(fd, bytes + done, n - done);
-        if (w > 0) {
-            done += (size_t)w;
-            continue;
-        }
-        TEST_ASSERT_TRUE_MESSAGE(w < 0 && (errno == EAGAIN || errno == EINTR), "write failed");
-        TEST_ASSERT_TRUE_MESSAGE(now_ms() < deadline, "write to the port stalled");
-        sleep_ms(1);
-    }
-}
-
-/* Reads up to n bytes, waiting at most timeout_ms overall; returns the count. */
-static size_t port_read(int fd, uint8_t *buf, size_t n, long timeout_ms)
-{
-    long long deadline = now_ms() + timeout_ms;
-    size_t got = 0;
-    while (got < n) {
-        struct pollfd pfd;
-        long long left = deadline - now_ms();
-        ssize_t r;
-        if (left <= 0) {
-            break;
-        }
-        pfd.fd = fd;
-        pfd.events = POLLIN;
-        if (poll(&pfd, 1, (int)left) <= 0) {
-            continue;
-        }
-        r = read(fd, buf + got, n - got);
-        if (r > 0) {
-            got += (size_t)r;
-        }
-    }
-    return got;
-}
-
-/* Bytes that arrive within ms (expected: none). */
-static size_t port_silence(int fd, long ms)
-{
-    uint8_t buf[512];
-    return port_read(fd, buf, sizeof buf, ms);
-}
-
-static size_t read_request(uint8_t addr, uint8_t count, uint8_t *out)
-{
-    return xgo_frame_encode(XGO_TYPE_READ, addr, &count, 1, out, XGO_READ_REQUEST_LEN);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(0, xgo_test_port_write(fd, bytes, n, REPLY_TIMEOUT_MS),
+                                  "write to the port failed or stalled");
 }
 
 /* Reads register bytes through the port: request, then the exact reply. */
 static void read_regs(int fd, uint8_t addr, uint8_t count, uint8_t *values)
 {
-    uint8_t req[XGO_READ_REQUEST_LEN];
     uint8_t reply[XGO_FRAME_MAX_LEN];
     uint8_t expect_head[5] = {0x55, 0x00, 0, XGO_TYPE_READ_REPLY, 0};
     size_t len = (size_t)count + XGO_FRAME_OVERHEAD;
+    size_t got;
     expect_head[2] = (uint8_t)len;
     expect_head[4] = addr;
-    read_request(addr, count, req);
-    port_write(fd, req, sizeof req);
-    TEST_ASSERT_EQUAL_INT_MESSAGE((int)len, (int)port_read(fd, reply, len, REPLY_TIMEOUT_MS),
-                                  "incomplete reply");
+    got = xgo_test_read_reply(fd, addr, count, reply, REPLY_TIMEOUT_MS);
+    TEST_ASSERT_EQUAL_INT_MESSAGE((int)len, (int)got, "incomplete reply");
     TEST_ASSERT_EQUAL_HEX8_ARRAY(expect_head, reply, 5);
     TEST_ASSERT_EQUAL_HEX8(xgo_frame_checksum((uint8_t)len, XGO_TYPE_READ_REPLY, addr, reply + 5,
                                               count),
@@ -361,63 +158,18 @@ static void read_regs(int fd, uint8_t addr, uint8_t count, uint8_t *values)
 
 static void write_regs(int fd, uint8_t addr, const uint8_t *values, size_t n)
 {
-    uint8_t frame[XGO_FRAME_MAX_LEN];
-    size_t len = xgo_frame_encode(XGO_TYPE_WRITE, addr, values, n, frame, sizeof frame);
-    TEST_ASSERT_TRUE(len > 0);
-    port_write(fd, frame, len);
-}
-
-/* CPU time (user + system) the emulator has used, in clock ticks; -1 when
- * /proc is not available. */
-static long emu_cpu_ticks(void)
-{
-    char path[64];
-    char buf[1024];
-    const char *p;
-    unsigned long utime, stime;
-    FILE *f;
-    size_t n;
-    snprintf(path, sizeof path, "/proc/%ld/stat", (long)g_emu.pid);
-    f = fopen(path, "r");
-    if (f == NULL) {
-        return -1;
-    }
-    n = fread(buf, 1, sizeof buf - 1, f);
-    fclose(f);
-    buf[n] = '\0';
-    p = strrchr(buf, ')'); /* the command name may contain spaces */
-    if (p == NULL ||
-        sscanf(p + 2, "%*c %*d %*d %*d %*d %*d %*u %*u %*u %*u %*u %lu %lu", &utime, &stime) != 2) {
-        return -1;
-    }
-    return (long)(utime + stime);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(0, xgo_test_write_regs(fd, addr, values, n, REPLY_TIMEOUT_MS),
+                                  "write frame not built or not sent");
 }
 
 /* -------------------------------------------------------- fixtures */
-
-/* Forgets a child that has exited (closing what is left of its pipes). */
-static void emu_reset(void)
-{
-    if (g_emu.out_fd >= 0) {
-        close(g_emu.out_fd);
-    }
-    if (g_emu.err_fd >= 0) {
-        close(g_emu.err_fd);
-    }
-    memset(&g_emu, 0, sizeof g_emu);
-    g_emu.pid = -1;
-    g_emu.out_fd = -1;
-    g_emu.err_fd = -1;
-}
 
 static void compute_standing_reply(void);
 
 void setUp(void)
 {
+    xgo_test_emu_init(&g_emu); /* tearDown closed and reaped what the last test left */
     compute_standing_reply();
-    g_emu.out_fd = -1;
-    g_emu.err_fd = -1;
-    emu_reset();
     g_port = -1;
 }
 
@@ -427,12 +179,7 @@ void tearDown(void)
         close(g_port);
         g_port = -1;
     }
-    if (g_emu.pid > 0) {
-        kill(g_emu.pid, SIGKILL);
-        waitpid(g_emu.pid, NULL, 0);
-        g_emu.pid = -1;
-    }
-    emu_reset();
+    xgo_test_emu_kill(&g_emu);
     /* whatever a failed test left there */
     if (unlink(g_link) != 0) {
         rmdir(g_link);
@@ -467,7 +214,7 @@ static const uint8_t k_spec_write[] = {0x55, 0x00, 0x09, 0x00, 0x30, 0xFF, 0xC7,
 static void test_prints_pty_path_first_and_links_it(void)
 {
     emu_start_linked(NULL, NULL);
-    TEST_ASSERT_EQUAL_INT(0, strncmp(g_emu.slave, "/dev/", 5));
+    TEST_ASSERT_EQUAL_INT(0, strncmp(g_emu.pty, "/dev/", 5));
     g_port = port_open_like_pyserial(g_link, B115200);
     TEST_ASSERT_TRUE(isatty(g_port));
     close(g_port);
@@ -483,9 +230,9 @@ static void test_spec_read_example_gets_the_spec_reply(void)
     g_port = port_open_like_pyserial(g_link, B115200);
     port_write(g_port, k_spec_read, sizeof k_spec_read);
     TEST_ASSERT_EQUAL_INT((int)sizeof reply,
-                          (int)port_read(g_port, reply, sizeof reply, REPLY_TIMEOUT_MS));
+                          (int)xgo_test_port_read(g_port, reply, sizeof reply, REPLY_TIMEOUT_MS));
     TEST_ASSERT_EQUAL_HEX8_ARRAY(k_spec_reply, reply, sizeof reply);
-    TEST_ASSERT_EQUAL_INT(0, (int)port_silence(g_port, 100)); /* nothing more */
+    TEST_ASSERT_EQUAL_INT(0, (int)xgo_test_port_silence(g_port, 100)); /* nothing more */
     emu_stop_cleanly(SIGTERM);
     assert_link_gone();
 }
@@ -496,7 +243,7 @@ static void test_spec_write_example_gets_no_reply_and_takes_effect(void)
     emu_start_linked(NULL, NULL);
     g_port = port_open_like_pyserial(g_link, B115200);
     port_write(g_port, k_spec_write, sizeof k_spec_write);
-    TEST_ASSERT_EQUAL_INT(0, (int)port_silence(g_port, 200));
+    TEST_ASSERT_EQUAL_INT(0, (int)xgo_test_port_silence(g_port, 200));
     read_regs(g_port, 0x30, 1, &vx);
     TEST_ASSERT_EQUAL_HEX8(0xFF, vx);
     emu_stop_cleanly(SIGTERM);
@@ -515,9 +262,9 @@ static void test_garbage_then_request_gets_its_reply(void)
     port_write(g_port, garbage, sizeof garbage);
     port_write(g_port, k_spec_read, sizeof k_spec_read);
     TEST_ASSERT_EQUAL_INT((int)sizeof reply,
-                          (int)port_read(g_port, reply, sizeof reply, REPLY_TIMEOUT_MS));
+                          (int)xgo_test_port_read(g_port, reply, sizeof reply, REPLY_TIMEOUT_MS));
     TEST_ASSERT_EQUAL_HEX8_ARRAY(k_spec_reply, reply, sizeof reply);
-    TEST_ASSERT_EQUAL_INT(0, (int)port_silence(g_port, 100));
+    TEST_ASSERT_EQUAL_INT(0, (int)xgo_test_port_silence(g_port, 100));
     emu_stop_cleanly(SIGTERM);
 }
 
@@ -554,18 +301,18 @@ static void test_close_and_reopen_100_times(void)
         if (after_abandon) {
             /* A reply to the abandoned request may be on its way (a real
              * board would send it too): flush once it has surely arrived. */
-            sleep_ms(50);
+            xgo_test_sleep_ms(50);
             tcflush(g_port, TCIFLUSH);
             after_abandon = 0;
         }
         if (i % 10 == 9) {
-            read_request(addr, 12, req);
+            xgo_test_read_request(addr, 12, req);
             port_write(g_port, req, sizeof req); /* leave at once */
             after_abandon = 1;
         } else if (i % 10 == 4) {
-            read_request(addr, 12, req);
+            xgo_test_read_request(addr, 12, req);
             port_write(g_port, req, sizeof req);
-            sleep_ms(20); /* leave with the reply unread */
+            xgo_test_sleep_ms(20); /* leave with the reply unread */
         } else {
             read_regs(g_port, addr, 1, &value);
             TEST_ASSERT_EQUAL_HEX8(k_spec_reply[5 + (addr - 0x50)], value);
@@ -574,15 +321,16 @@ static void test_close_and_reopen_100_times(void)
         g_port = -1;
     }
     g_port = port_open_like_pyserial(g_link, B115200);
-    sleep_ms(50);
+    xgo_test_sleep_ms(50);
     tcflush(g_port, TCIFLUSH);
     {
         uint8_t reply[sizeof k_spec_reply];
         port_write(g_port, k_spec_read, sizeof k_spec_read);
-        TEST_ASSERT_EQUAL_INT((int)sizeof reply,
-                              (int)port_read(g_port, reply, sizeof reply, REPLY_TIMEOUT_MS));
+        TEST_ASSERT_EQUAL_INT(
+            (int)sizeof reply,
+            (int)xgo_test_port_read(g_port, reply, sizeof reply, REPLY_TIMEOUT_MS));
         TEST_ASSERT_EQUAL_HEX8_ARRAY(k_spec_reply, reply, sizeof reply);
-        TEST_ASSERT_EQUAL_INT(0, (int)port_silence(g_port, 50));
+        TEST_ASSERT_EQUAL_INT(0, (int)xgo_test_port_silence(g_port, 50));
     }
     close(g_port);
     g_port = -1;
@@ -598,13 +346,13 @@ static void test_unread_replies_do_not_leak_into_the_next_session(void)
     uint8_t value;
     emu_start_linked(NULL, NULL);
     g_port = port_open_like_pyserial(g_link, B115200);
-    read_request(0x50, 12, req);
+    xgo_test_read_request(0x50, 12, req);
     port_write(g_port, req, sizeof req);
-    sleep_ms(50); /* the reply is now waiting in the pty */
+    xgo_test_sleep_ms(50); /* the reply is now waiting in the pty */
     close(g_port);
-    sleep_ms(50); /* xgo-emu notices the hang-up within a tick */
+    xgo_test_sleep_ms(50); /* xgo-emu notices the hang-up within a tick */
     g_port = port_open_untouched(g_link);
-    TEST_ASSERT_EQUAL_INT(0, (int)port_silence(g_port, 50));
+    TEST_ASSERT_EQUAL_INT(0, (int)xgo_test_port_silence(g_port, 50));
     read_regs(g_port, 0x30, 1, &value);
     TEST_ASSERT_EQUAL_HEX8(0x80, value);
     close(g_port);
@@ -616,9 +364,9 @@ static void test_unread_replies_do_not_leak_into_the_next_session(void)
     write_regs(g_port, 0x30, &value, 1);
     port_write(g_port, req, sizeof req);
     close(g_port);
-    sleep_ms(50);
+    xgo_test_sleep_ms(50);
     g_port = port_open_untouched(g_link);
-    TEST_ASSERT_EQUAL_INT(0, (int)port_silence(g_port, 50));
+    TEST_ASSERT_EQUAL_INT(0, (int)xgo_test_port_silence(g_port, 50));
     read_regs(g_port, 0x30, 1, &value);
     TEST_ASSERT_EQUAL_HEX8(0x10, value);
     emu_stop_cleanly(SIGTERM);
@@ -631,23 +379,23 @@ static void test_idle_cpu_stays_low(void)
     long hz = sysconf(_SC_CLK_TCK);
     long before, after;
     emu_start_linked(NULL, NULL);
-    if (emu_cpu_ticks() < 0 || hz <= 0) {
+    if (xgo_test_cpu_ticks(g_emu.pid) < 0 || hz <= 0) {
         emu_stop_cleanly(SIGTERM);
         TEST_IGNORE_MESSAGE("no /proc/PID/stat: CPU use not measured");
     }
     g_port = port_open_like_pyserial(g_link, B115200);
-    before = emu_cpu_ticks();
-    sleep_ms(1000);
-    after = emu_cpu_ticks();
+    before = xgo_test_cpu_ticks(g_emu.pid);
+    xgo_test_sleep_ms(1000);
+    after = xgo_test_cpu_ticks(g_emu.pid);
     /* A busy loop would use ~100 % of a CPU; ticking at 500 Hz uses ~1 %.
      * The bound leaves room for sanitizers and loaded CI machines. */
     TEST_ASSERT_TRUE_MESSAGE((after - before) * 100 < hz * 30, "busy while a host is attached");
     close(g_port);
     g_port = -1;
-    sleep_ms(50);
-    before = emu_cpu_ticks();
-    sleep_ms(1000);
-    after = emu_cpu_ticks();
+    xgo_test_sleep_ms(50);
+    before = xgo_test_cpu_ticks(g_emu.pid);
+    xgo_test_sleep_ms(1000);
+    after = xgo_test_cpu_ticks(g_emu.pid);
     TEST_ASSERT_TRUE_MESSAGE((after - before) * 100 < hz * 30, "busy with no host attached");
     emu_stop_cleanly(SIGTERM);
 }
@@ -664,11 +412,11 @@ static void test_pipelined_large_reads_all_arrive(void)
     emu_start_linked(NULL, NULL);
     g_port = port_open_like_pyserial(g_link, B115200);
     for (i = 0; i < REQUESTS; i++) {
-        read_request(0x00, (uint8_t)COUNT, reqs + i * XGO_READ_REQUEST_LEN);
+        xgo_test_read_request(0x00, (uint8_t)COUNT, reqs + i * XGO_READ_REQUEST_LEN);
     }
     port_write(g_port, reqs, sizeof reqs);
     TEST_ASSERT_EQUAL_INT((int)sizeof replies,
-                          (int)port_read(g_port, replies, sizeof replies, 10000));
+                          (int)xgo_test_port_read(g_port, replies, sizeof replies, 10000));
     for (i = 0; i < REQUESTS; i++) {
         const uint8_t *r = replies + i * REPLY;
         TEST_ASSERT_EQUAL_HEX8(0x55, r[0]);
@@ -688,11 +436,12 @@ static void test_pipelined_large_reads_all_arrive(void)
 static double timed_spec_read_ms(int fd)
 {
     uint8_t reply[sizeof k_spec_reply];
-    double t0 = now_us_f();
+    double t0 = xgo_test_now_us_f();
     port_write(fd, k_spec_read, sizeof k_spec_read);
-    TEST_ASSERT_EQUAL_INT((int)sizeof reply, (int)port_read(fd, reply, sizeof reply, 2000));
+    TEST_ASSERT_EQUAL_INT((int)sizeof reply,
+                          (int)xgo_test_port_read(fd, reply, sizeof reply, 2000));
     TEST_ASSERT_EQUAL_HEX8_ARRAY(k_spec_reply, reply, sizeof reply);
-    return (now_us_f() - t0) / 1000.0;
+    return (xgo_test_now_us_f() - t0) / 1000.0;
 }
 
 /* At 1200 bit/s the 9-byte request and the 20-byte reply take
@@ -815,7 +564,7 @@ static void test_bad_options_exit_2_with_one_line_and_usage(void)
     size_t i;
     for (i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         assert_misuse(cases[i]);
-        emu_reset();
+        xgo_test_emu_reset(&g_emu);
     }
 }
 
@@ -827,7 +576,7 @@ static void test_help_and_version_exit_0(void)
     TEST_ASSERT_EQUAL_INT(0, WEXITSTATUS(g_emu.status));
     TEST_ASSERT_EQUAL_INT(0, strncmp(g_emu.out, "usage: xgo-emu", 14));
     TEST_ASSERT_NOT_NULL(strstr(g_emu.out, "--baud-pacing"));
-    emu_reset();
+    xgo_test_emu_reset(&g_emu);
     emu_run_to_exit(version);
     TEST_ASSERT_EQUAL_INT(0, WEXITSTATUS(g_emu.status));
     TEST_ASSERT_EQUAL_STRING("xgo-emu 0.1.0\n", g_emu.out);
@@ -866,12 +615,12 @@ static void test_trace_prints_one_line_per_frame(void)
     g_port = port_open_like_pyserial(g_link, B115200);
     port_write(g_port, k_spec_read, sizeof k_spec_read);
     TEST_ASSERT_EQUAL_INT((int)sizeof reply,
-                          (int)port_read(g_port, reply, sizeof reply, REPLY_TIMEOUT_MS));
+                          (int)xgo_test_port_read(g_port, reply, sizeof reply, REPLY_TIMEOUT_MS));
     port_write(g_port, bad_sum, sizeof bad_sum);
     port_write(g_port, k_spec_write, sizeof k_spec_write);
     write_regs(g_port, 0x01, &battery, 1); /* read-only */
     write_regs(g_port, 0x90, &arm, 1);     /* not on the Mini */
-    TEST_ASSERT_EQUAL_INT(0, (int)port_silence(g_port, 100));
+    TEST_ASSERT_EQUAL_INT(0, (int)xgo_test_port_silence(g_port, 100));
     emu_stop_cleanly(SIGTERM);
 
     TEST_ASSERT_TRUE_MESSAGE(find_trace_line(" rx read 0x50 servo11 n=12", line, sizeof line),
@@ -925,17 +674,17 @@ static void test_silence_timeout_follows_the_option(void)
     emu_start_linked("--trace", NULL); /* default: 20 ms */
     g_port = port_open_like_pyserial(g_link, B115200);
     port_write(g_port, partial, sizeof partial);
-    sleep_ms(150);
+    xgo_test_sleep_ms(150);
     close(g_port);
     g_port = -1;
     emu_stop_cleanly(SIGTERM);
     TEST_ASSERT_NOT_NULL_MESSAGE(strstr(g_emu.err, expect), g_emu.err);
-    emu_reset();
+    xgo_test_emu_reset(&g_emu);
 
     emu_start_linked("--trace", "--timeout-ms=5000");
     g_port = port_open_like_pyserial(g_link, B115200);
     port_write(g_port, partial, sizeof partial);
-    sleep_ms(150);
+    xgo_test_sleep_ms(150);
     emu_stop_cleanly(SIGTERM);
     TEST_ASSERT_NULL_MESSAGE(strstr(g_emu.err, expect), g_emu.err);
 }

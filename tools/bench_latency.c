@@ -14,170 +14,66 @@
  * Prints numbers; never fails on timing. Exits 1 only if the emulator does
  * not answer at all.
  */
-#include <errno.h>
-#include <fcntl.h>
-#include <poll.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include <string.h>
 #include <sys/types.h>
-#include <sys/wait.h>
 #include <termios.h>
-#include <time.h>
 #include <unistd.h>
+
+#include "emu_process.h"
+#include "serial_port.h"
+#include "test_clock.h"
 
 #ifndef XGO_EMU_PATH
 #error "XGO_EMU_PATH must name the xgo-emu executable"
 #endif
 
 #define REPLY_TIMEOUT_MS 1000
+#define EMU_START_TIMEOUT_MS 5000
+#define EMU_STOP_TIMEOUT_MS 5000 /* then SIGKILL */
 #define IDLE_SECONDS 2
 
 static const unsigned char k_request[] = {0x55, 0x00, 0x09, 0x02, 0x50, 0x0C, 0x98, 0x00, 0xAA};
 #define REPLY_LEN 20u
 
-typedef struct emu_s {
-    pid_t pid;
-    char slave[256];
-} emu_t;
-
-static double now_us(void)
+/* Starts xgo-emu with one optional extra option and reads the pty path from
+ * its first stdout line (test/support). Its stderr (counters at exit) is
+ * discarded. Returns 0, or -1 with nothing left running. */
+static int emu_start(xgo_test_emu_t *emu, const char *option)
 {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec * 1e6 + (double)ts.tv_nsec / 1e3;
-}
-
-static void sleep_ms(long ms)
-{
-    struct timespec ts;
-    ts.tv_sec = ms / 1000;
-    ts.tv_nsec = (ms % 1000) * 1000000L;
-    while (nanosleep(&ts, &ts) != 0 && errno == EINTR) {
-    }
-}
-
-/* Starts xgo-emu with one optional extra option; reads the pty path from its
- * first stdout line. Its stderr (counters at exit) is discarded. */
-static int emu_start(emu_t *emu, const char *option)
-{
-    int out_pipe[2];
-    size_t len = 0;
-    double deadline;
-    if (pipe(out_pipe) != 0) {
+    const char *args[2];
+    args[0] = option;
+    args[1] = NULL;
+    xgo_test_emu_init(emu);
+    if (xgo_test_emu_spawn(emu, XGO_EMU_PATH, args, "/dev/null") != 0) {
         return -1;
     }
-    emu->pid = fork();
-    if (emu->pid < 0) {
+    if (xgo_test_emu_read_pty(emu, EMU_START_TIMEOUT_MS) != XGO_TEST_EMU_PTY_OK) {
+        xgo_test_emu_kill(emu);
         return -1;
     }
-    if (emu->pid == 0) {
-        int devnull = open("/dev/null", O_WRONLY);
-        dup2(out_pipe[1], STDOUT_FILENO);
-        if (devnull >= 0) {
-            dup2(devnull, STDERR_FILENO);
-        }
-        close(out_pipe[0]);
-        close(out_pipe[1]);
-        execl(XGO_EMU_PATH, XGO_EMU_PATH, option, (char *)NULL);
-        _exit(127);
-    }
-    close(out_pipe[1]);
-    deadline = now_us() + 5e6;
-    while (len < sizeof emu->slave - 1) {
-        struct pollfd pfd;
-        ssize_t n;
-        pfd.fd = out_pipe[0];
-        pfd.events = POLLIN;
-        if (now_us() > deadline || poll(&pfd, 1, 100) < 0) {
-            break;
-        }
-        if (pfd.revents == 0) {
-            continue;
-        }
-        n = read(out_pipe[0], emu->slave + len, 1);
-        if (n <= 0) {
-            break;
-        }
-        if (emu->slave[len] == '\n') {
-            emu->slave[len] = '\0';
-            close(out_pipe[0]);
-            return 0;
-        }
-        len++;
-    }
-    close(out_pipe[0]);
-    return -1;
+    return 0;
 }
 
-static void emu_stop(emu_t *emu)
+static void emu_stop(xgo_test_emu_t *emu)
 {
-    int i;
-    if (emu->pid <= 0) {
-        return;
-    }
-    kill(emu->pid, SIGTERM);
-    for (i = 0; i < 500; i++) {
-        if (waitpid(emu->pid, NULL, WNOHANG) == emu->pid) {
-            emu->pid = -1;
-            return;
-        }
-        sleep_ms(10);
-    }
-    kill(emu->pid, SIGKILL);
-    waitpid(emu->pid, NULL, 0);
-    emu->pid = -1;
-}
-
-/* pyserial's settings: raw 8N1, no flow control, non-blocking. */
-static int port_open(const char *path)
-{
-    struct termios tio;
-    int fd = open(path, O_RDWR | O_NOCTTY | O_NONBLOCK);
-    if (fd < 0 || tcgetattr(fd, &tio) != 0) {
-        return -1;
-    }
-    cfmakeraw(&tio);
-    tio.c_cflag |= (tcflag_t)(CLOCAL | CREAD);
-    tio.c_cc[VMIN] = 0;
-    tio.c_cc[VTIME] = 0;
-    cfsetispeed(&tio, B115200);
-    cfsetospeed(&tio, B115200);
-    if (tcsetattr(fd, TCSANOW, &tio) != 0) {
-        close(fd);
-        return -1;
-    }
-    tcflush(fd, TCIOFLUSH);
-    return fd;
+    xgo_test_emu_stop(emu, SIGTERM, EMU_STOP_TIMEOUT_MS);
 }
 
 /* One request -> reply round trip; returns microseconds or -1. */
 static double round_trip(int fd)
 {
     unsigned char reply[REPLY_LEN];
-    size_t got = 0;
-    double t0 = now_us();
-    if (write(fd, k_request, sizeof k_request) != (ssize_t)sizeof k_request) {
+    double t0 = xgo_test_now_us_f();
+    if (xgo_test_port_write(fd, k_request, sizeof k_request, REPLY_TIMEOUT_MS) != 0 ||
+        xgo_test_port_read(fd, reply, REPLY_LEN, REPLY_TIMEOUT_MS) != REPLY_LEN) {
         return -1;
-    }
-    while (got < REPLY_LEN) {
-        struct pollfd pfd;
-        ssize_t n;
-        pfd.fd = fd;
-        pfd.events = POLLIN;
-        if (poll(&pfd, 1, REPLY_TIMEOUT_MS) <= 0) {
-            return -1;
-        }
-        n = read(fd, reply + got, REPLY_LEN - got);
-        if (n > 0) {
-            got += (size_t)n;
-        }
     }
     if (reply[2] != REPLY_LEN || reply[REPLY_LEN - 1] != 0xAA) {
         return -1;
     }
-    return now_us() - t0;
+    return xgo_test_now_us_f() - t0;
 }
 
 static int cmp_double(const void *a, const void *b)
@@ -190,7 +86,7 @@ static int cmp_double(const void *a, const void *b)
 /* Runs n round trips after a short warm-up and prints the distribution. */
 static int measure(const char *label, const char *option, size_t n)
 {
-    emu_t emu;
+    static xgo_test_emu_t emu; /* ~70 KB of captured output: not on the stack */
     double *lat;
     double sum = 0;
     size_t i;
@@ -200,10 +96,10 @@ static int measure(const char *label, const char *option, size_t n)
         fprintf(stderr, "bench_latency: cannot start %s\n", XGO_EMU_PATH);
         return -1;
     }
-    fd = port_open(emu.slave);
+    fd = xgo_test_port_open_like_pyserial(emu.pty, B115200);
     lat = malloc(n * sizeof *lat);
     if (fd < 0 || lat == NULL) {
-        fprintf(stderr, "bench_latency: cannot open %s\n", emu.slave);
+        fprintf(stderr, "bench_latency: cannot open %s\n", emu.pty);
         emu_stop(&emu);
         free(lat);
         return -1;
@@ -233,38 +129,13 @@ static int measure(const char *label, const char *option, size_t n)
     return 0;
 }
 
-/* utime + stime of pid in clock ticks, -1 without /proc. */
-static long cpu_ticks(pid_t pid)
-{
-    char path[64];
-    char buf[1024];
-    const char *p;
-    unsigned long utime, stime;
-    size_t n;
-    FILE *f;
-    snprintf(path, sizeof path, "/proc/%ld/stat", (long)pid);
-    f = fopen(path, "r");
-    if (f == NULL) {
-        return -1;
-    }
-    n = fread(buf, 1, sizeof buf - 1, f);
-    fclose(f);
-    buf[n] = '\0';
-    p = strrchr(buf, ')');
-    if (p == NULL ||
-        sscanf(p + 2, "%*c %*d %*d %*d %*d %*d %*u %*u %*u %*u %*u %lu %lu", &utime, &stime) != 2) {
-        return -1;
-    }
-    return (long)(utime + stime);
-}
-
 static double idle_cpu_percent(pid_t pid)
 {
     long hz = sysconf(_SC_CLK_TCK);
-    long before = cpu_ticks(pid);
+    long before = xgo_test_cpu_ticks(pid);
     long after;
-    sleep_ms(IDLE_SECONDS * 1000L);
-    after = cpu_ticks(pid);
+    xgo_test_sleep_ms(IDLE_SECONDS * 1000L);
+    after = xgo_test_cpu_ticks(pid);
     if (before < 0 || after < 0 || hz <= 0) {
         return -1;
     }
@@ -273,13 +144,13 @@ static double idle_cpu_percent(pid_t pid)
 
 static void measure_idle(void)
 {
-    emu_t emu;
+    static xgo_test_emu_t emu; /* ~70 KB of captured output: not on the stack */
     double attached, detached;
     int fd;
     if (emu_start(&emu, NULL) != 0) {
         return;
     }
-    fd = port_open(emu.slave);
+    fd = xgo_test_port_open_like_pyserial(emu.pty, B115200);
     attached = idle_cpu_percent(emu.pid);
     if (fd >= 0) {
         close(fd); /* from now on the master sees POLLHUP */
