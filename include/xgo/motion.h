@@ -81,6 +81,12 @@ typedef struct xgo_motion_s {
     xgo_bam_t periodic_phase[6]; /* roll, pitch, yaw, x, y, z */
     int32_t stab_mdeg[2];     /* self-stabilisation roll, pitch correction */
     uint32_t nv_changes;      /* counts changes of non-volatile data */
+    struct {                  /* last body + leg IK solve (skipped when unchanged) */
+        xgo_body_pose_t pose;
+        xgo_vec3_t feet[XGO_LEG_COUNT];
+        int32_t q_mdeg[XGO_SERVO_COUNT];
+        uint8_t valid;
+    } ik_cache;
 } xgo_motion_t;
 
 void xgo_motion_init(xgo_motion_t *m, const xgo_profile_t *profile, uint8_t battery_pct,

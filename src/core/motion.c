@@ -378,6 +378,22 @@ static void action_pose(xgo_motion_t *m, xgo_body_pose_t *pose, xgo_vec3_t feet[
     }
 }
 
+/* Body + leg IK, skipped when the pose and the feet are those of the last
+ * solve: a robot standing still (the common case) then costs almost nothing,
+ * which matters on a Cortex-M0 (docs/mcu.md). */
+static void solve_joints(xgo_motion_t *m, const xgo_body_pose_t *pose,
+                         const xgo_vec3_t feet[XGO_LEG_COUNT], int32_t q[XGO_SERVO_COUNT])
+{
+    if (!m->ik_cache.valid || memcmp(&m->ik_cache.pose, pose, sizeof *pose) != 0 ||
+        memcmp(m->ik_cache.feet, feet, sizeof m->ik_cache.feet) != 0) {
+        m->ik_cache.pose = *pose;
+        memcpy(m->ik_cache.feet, feet, sizeof m->ik_cache.feet);
+        xgo_body_to_joints(m->profile, pose, feet, (int32_t(*)[XGO_JOINT_COUNT])m->ik_cache.q_mdeg);
+        m->ik_cache.valid = 1;
+    }
+    memcpy(q, m->ik_cache.q_mdeg, sizeof m->ik_cache.q_mdeg);
+}
+
 static int whole_unit_targets(xgo_motion_t *m, const xgo_regs_t *r, int32_t q[XGO_SERVO_COUNT],
                               int32_t *yaw_rate_mdeg_s)
 {
@@ -403,7 +419,7 @@ static int whole_unit_targets(xgo_motion_t *m, const xgo_regs_t *r, int32_t q[XG
         *yaw_rate_mdeg_s = m->gait.vyaw_mdeg_s;
     }
     m->pose = pose;
-    xgo_body_to_joints(m->profile, &pose, feet, (int32_t(*)[XGO_JOINT_COUNT])q);
+    solve_joints(m, &pose, feet, q);
     return walking || m->action_id != 0;
 }
 
