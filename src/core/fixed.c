@@ -285,6 +285,18 @@ static int64_t rshift_round(int64_t v, unsigned n)
     return (v + ((int64_t)1 << (n - 1u))) >> n;
 }
 
+/* round(v / 3) as (|v| + 1) / 3 with the sign of v, for |v| < 2^15 - 1: a
+ * multiply by ceil(2^16 / 3) = 21846 and a shift is exact there
+ * (n * 21846 = n * 2^16 / 3 + 2n / 3, and 2n / 3 < 2^16 / 3 keeps the floor),
+ * and avoids a division call on cores without a divider. */
+static int32_t div3_small(int32_t v)
+{
+    if (v >= 0) {
+        return (int32_t)(((uint32_t)v + 1u) * 21846u >> 16);
+    }
+    return -(int32_t)(((uint32_t)-v + 1u) * 21846u >> 16);
+}
+
 void xgo_sincos(xgo_bam_t a, xgo_q30_t *sin_out, xgo_q30_t *cos_out)
 {
     uint32_t quadrant = a >> 30;
@@ -298,7 +310,7 @@ void xgo_sincos(xgo_bam_t a, xgo_q30_t *sin_out, xgo_q30_t *cos_out)
     int64_t d3_2 = rshift_round(dr * half_d2, 34);          /* dr^3/2, <= 1.1e3 */
     /* sin(dr) = dr - dr^3/6 (next term < 1e-13),
      * cos(dr) = 1 - dr^2/2 (next term dr^4/24 < 6e-11 = 0.07 LSB) */
-    int64_t sd = dr - (d3_2 >= 0 ? (d3_2 + 1) / 3 : -((-d3_2 + 1) / 3));
+    int64_t sd = dr - div3_small((int32_t)d3_2); /* |d3_2| <= 1.1e3 */
     int64_t s0 = sin_tab[k];
     int64_t c0 = sin_tab[128u - k];
     /* angle addition: sin(a+d) = s0 cos d + c0 sin d
@@ -381,6 +393,32 @@ static const int64_t cordic_atan_tab[CORDIC_ITERS + 1] = {
         }                                                        \
     } while (0)
 
+/* round(n * 2^32 / d) (ties away from zero) for n * 2^7 < d < 2^31: the
+ * CORDIC residual y/x. Restoring division, one quotient bit per step in
+ * 32 bits (the remainder stays below d < 2^31, so doubling it cannot
+ * overflow); the quotient is below 2^25, so the first 7 of its 32 bits are
+ * zero and n starts pre-shifted by 7. Cores without a divider (Cortex-M0)
+ * would otherwise call a 64-bit division routine here. */
+static uint32_t frac_q32(uint32_t n, uint32_t d)
+{
+    uint32_t r = n << 7; /* < d */
+    uint32_t q = 0;
+    int i;
+    for (i = 0; i < 25; ++i) {
+        r <<= 1;
+        q <<= 1;
+        if (r >= d) {
+            r -= d;
+            q |= 1u;
+        }
+    }
+    /* round half away from zero: (n * 2^32 + floor(d/2)) / d */
+    if (r >= d - (d >> 1)) {
+        ++q;
+    }
+    return q;
+}
+
 /* Angle of (ux, uy) with ux >= uy > 0 and ux in [2^29, 2^30); result in
  * BAM, 0..2^29 (0..45 degrees). */
 static uint32_t cordic_octant(uint32_t ux, uint32_t uy)
@@ -388,7 +426,7 @@ static uint32_t cordic_octant(uint32_t ux, uint32_t uy)
     int32_t x = (int32_t)ux;
     int32_t y = (int32_t)uy;
     int64_t z = 0;
-    int64_t t, t3;
+    int64_t t;
     /* i = 0 (45 degrees) is not needed: the octant reduction leaves at
      * most 45 degrees and steps 1.. converge over 54.9 degrees. */
     CORDIC_STEP(1);
@@ -401,12 +439,19 @@ static uint32_t cordic_octant(uint32_t ux, uint32_t uy)
     CORDIC_STEP(8);
     /* What is left is the angle of (x, y), below atan(2^-CORDIC_ITERS):
      * finish with atan(t) = t - t^3/3 (the next term, t^5/5, is below
-     * 2e-13 rad), t = y/x in Q32. |y| < 2^24 here, so y * 2^32 fits. */
-    t = (int64_t)y * ((int64_t)1 << 32);
-    t = t >= 0 ? (t + x / 2) / x : -((-t + x / 2) / x);      /* Q32, |t| < 2^25 */
-    t3 = (((t * t) >> 32) * t) >> 32;                          /* Q32 */
-    t -= t3 >= 0 ? (t3 + 1) / 3 : -((-t3 + 1) / 3);
-    z += (t * RAD_TO_Z + ((int64_t)1 << 31)) >> 32;           /* |t * RAD_TO_Z| < 2^63 */
+     * 2e-13 rad), t = y/x in Q32. */
+    {
+        uint32_t ut = frac_q32(y < 0 ? 0u - (uint32_t)y : (uint32_t)y, (uint32_t)x);
+        /* t^3 in Q32 from the top 15 bits of |t| (< 2^24 * 1.01, so u < 2^15
+         * and u^2, w * u fit 32 bits): within about one unit of Q32, and the
+         * term itself is at most 2^8 units (0.0004 BAM per unit). */
+        uint32_t u = ut >> 9;
+        uint32_t w = (u * u) >> 14; /* ~ t^2 / 2^32 */
+        uint32_t c = (w * u) >> 23; /* ~ t^3 / 2^64 */
+        ut -= ((c + 1u) * 21846u) >> 16; /* (c + 1) / 3, exact for c < 2^15 */
+        t = y < 0 ? -(int64_t)ut : (int64_t)ut;
+    }
+    z += (t * RAD_TO_Z + ((int64_t)1 << 31)) >> 32; /* |t * RAD_TO_Z| < 2^63 */
     return (uint32_t)((z + ((int64_t)1 << (CORDIC_Z_SHIFT - 1))) >> CORDIC_Z_SHIFT);
 }
 
