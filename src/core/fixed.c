@@ -166,27 +166,45 @@ uint32_t xgo_isqrt32(uint32_t x)
     return r;
 }
 
+/* Digit by digit, two bits of x per bit of the root: the state after the
+ * high word is (floor(sqrt(hi)), hi - root^2), which xgo_isqrt32 gives; the
+ * low word's 16 bit pairs follow. The remainder is at most twice the root,
+ * so 32 bits hold it for all but the last two steps (done in 64 bits): a
+ * third of the old all-64-bit loop's instructions on a 32-bit core. */
 uint32_t xgo_isqrt64(uint64_t x)
 {
-    uint64_t r = 0;
-    uint64_t bit;
-    unsigned top;
-    if (x <= 0xFFFFFFFFu) {
-        return xgo_isqrt32((uint32_t)x);
+    uint32_t hi = (uint32_t)(x >> 32), lo = (uint32_t)x;
+    uint32_t r, rem;
+    uint64_t rem64, trial64;
+    int i;
+    if (hi == 0u) {
+        return xgo_isqrt32(lo);
     }
-    /* start at the highest even bit position not above x's top bit */
-    top = 63u - clz32((uint32_t)(x >> 32));
-    bit = (uint64_t)1 << (top & ~1u);
-    while (bit != 0u) {
-        if (x >= r + bit) {
-            x -= r + bit;
-            r = (r >> 1) + bit;
-        } else {
-            r >>= 1;
+    r = xgo_isqrt32(hi);
+    rem = hi - r * r; /* <= 2r < 2^17 */
+    /* bit pairs 30..4 of lo: before step j (0..13) r < 2^(16+j) and
+     * rem <= 2r, so rem * 4 + 3 and 4r + 1 stay below 2^32 */
+    for (i = 30; i >= 4; i -= 2) {
+        uint32_t trial = (r << 2) | 1u;
+        rem = (rem << 2) | ((lo >> i) & 3u);
+        r <<= 1;
+        if (rem >= trial) {
+            rem -= trial;
+            r |= 1u;
         }
-        bit >>= 2;
     }
-    return (uint32_t)r;
+    /* bit pairs 2 and 0: the remainder may pass 2^32 */
+    rem64 = rem;
+    for (i = 2; i >= 0; i -= 2) {
+        trial64 = ((uint64_t)r << 2) | 1u;
+        rem64 = (rem64 << 2) | ((lo >> i) & 3u);
+        r <<= 1;
+        if (rem64 >= trial64) {
+            rem64 -= trial64;
+            r |= 1u;
+        }
+    }
+    return r;
 }
 
 xgo_q16_t xgo_q16_sqrt(xgo_q16_t x)
