@@ -444,6 +444,25 @@ uint8_t xgo_range_to_byte(const xgo_range_t *r, int32_t v)
     if (v >= r->hi) {
         return 255u;
     }
+    if (span < ((int64_t)1 << 24)) {
+        /* 32-bit (the servo and foot ranges, every tick): 0 < off < span <
+         * 2^24, so num = 255 * off < 2^32 and span << 7 < 2^31. The quotient
+         * is below 255: eight steps of restoring division give it exactly,
+         * with no divide call on cores without a divider (Cortex-M0). */
+        uint32_t num32 = 255u * ((uint32_t)v - (uint32_t)r->lo);
+        uint32_t den = (uint32_t)span << 7;
+        uint32_t q = 0;
+        int i;
+        for (i = 0; i < 8; ++i) {
+            q <<= 1;
+            if (num32 >= den) {
+                num32 -= den;
+                q |= 1u;
+            }
+            den >>= 1;
+        }
+        return (uint8_t)q;
+    }
     num = 255 * ((int64_t)v - r->lo); /* 0 < num < 255 * span */
     return (uint8_t)(num / span);
 }
@@ -457,6 +476,10 @@ int32_t xgo_byte_to_range(const xgo_range_t *r, uint8_t b)
     }
     /* ceil(b * span / 255): rounding up (by less than one unit) makes
      * encode(decode(b)) == b for every byte whenever span >= 255 units. */
+    if (span < ((int64_t)1 << 23)) {
+        /* b * span + 254 < 2^31: a 32-bit division suffices */
+        return r->lo + (int32_t)(((uint32_t)b * (uint32_t)span + 254u) / 255u);
+    }
     off = ((int64_t)b * span + 254) / 255; /* < 2^40 */
     return xgo_sat32((int64_t)r->lo + off);
 }

@@ -254,9 +254,13 @@ void xgo_regs_set_diag(xgo_regs_t *r, const uint32_t counters[XGO_DIAG_COUNT])
 
 uint8_t xgo_angle_to_byte(int32_t mdeg)
 {
-    /* 1 LSB = 180/128 deg = 1406.25 mdeg; round half away from zero. */
-    int64_t scaled = (int64_t)mdeg * 128;
-    int64_t q = (scaled >= 0 ? scaled + 90000 : scaled - 90000) / 180000;
+    /* 1 LSB = 180/128 deg = 1406.25 mdeg; round half away from zero.
+     * +-180 degrees already give 256 and 0 (clamped below), so clamping the
+     * angle there first changes nothing and keeps mdeg * 128 within 2^25:
+     * 32-bit arithmetic. */
+    int32_t m = mdeg > 180000 ? 180000 : (mdeg < -180000 ? -180000 : mdeg);
+    int32_t scaled = m * 128;
+    int32_t q = (scaled >= 0 ? scaled + 90000 : scaled - 90000) / 180000;
     q += 128;
     if (q < 0) {
         q = 0;

@@ -46,6 +46,18 @@ void xgo_imu_reset_yaw(xgo_imu_t *imu)
 /* Wrap an angle in mdeg into [-180000, 180000). */
 static int32_t wrap_mdeg(int64_t a)
 {
+    if (a >= -900000 && a < 900000) {
+        /* the usual case (an angle plus a small offset): at most two
+         * turns to remove, in 32 bits instead of a 64-bit remainder */
+        int32_t v = (int32_t)a;
+        while (v >= 180000) {
+            v -= 360000;
+        }
+        while (v < -180000) {
+            v += 360000;
+        }
+        return v;
+    }
     a %= 360000;
     if (a >= 180000) {
         a -= 360000;
@@ -66,10 +78,27 @@ void xgo_imu_tick(xgo_imu_t *imu, int32_t body_roll_mdeg, int32_t body_pitch_mde
     /* yaw_acc counts mdeg * tick_hz, so adding the rate each tick integrates
      * exactly; it wraps at one turn and stays well inside int32 for rates
      * up to thousands of degrees per second. */
-    acc = (int64_t)imu->yaw_acc + yaw_rate_mdeg_s;
-    acc %= turn;
-    imu->yaw_acc = (int32_t)acc;
+    if (turn < ((int64_t)1 << 29) && yaw_rate_mdeg_s < turn && yaw_rate_mdeg_s > -turn &&
+        imu->yaw_acc < turn && imu->yaw_acc > -turn) {
+        /* 32-bit (tick rates up to 1491 Hz, rates below a turn per tick, the
+         * accumulator as the previous tick left it): |acc| < 2 turn < 2^30,
+         * and one subtraction does what % does (truncating, sign of acc). */
+        int32_t t32 = (int32_t)turn;
+        int32_t a32 = imu->yaw_acc + yaw_rate_mdeg_s;
+        if (a32 >= t32) {
+            a32 -= t32;
+        } else if (a32 <= -t32) {
+            a32 += t32;
+        }
+        imu->yaw_acc = a32;
+        acc = a32 / (int32_t)tick_hz; /* |a32| < 2^29 */
+    } else {
+        acc = (int64_t)imu->yaw_acc + yaw_rate_mdeg_s;
+        acc %= turn;
+        imu->yaw_acc = (int32_t)acc;
+        acc /= (int64_t)tick_hz;
+    }
     imu->roll_mdeg = wrap_mdeg((int64_t)body_roll_mdeg + imu->ground_roll_mdeg);
     imu->pitch_mdeg = wrap_mdeg((int64_t)body_pitch_mdeg + imu->ground_pitch_mdeg);
-    imu->yaw_mdeg = wrap_mdeg(acc / (int64_t)tick_hz + body_yaw_mdeg);
+    imu->yaw_mdeg = wrap_mdeg(acc + body_yaw_mdeg);
 }
