@@ -83,6 +83,12 @@ typedef struct planar_s {
     int64_t l1, l2;     /* q4 */
     int32_t g_lo, g_hi; /* geometric knee angle limits, signed BAM */
     int32_t t_lo, t_hi; /* hip pitch limits, signed BAM */
+    /* The boundary arcs of the reachable region depend on the limits only:
+     * computed on the first projection, reused by the second branch. */
+    int arcs_ready;
+    int64_t hip_r[2];    /* g at g_lo / g_hi: radius of the foot's circle about the hip, q4 */
+    xgo_bam_t hip_a[2];  /* and the foot's u-angle past the thigh */
+    int64_t knee_x[2], knee_h[2]; /* t2 at t_lo / t_hi: the knee, q4 */
 } planar_t;
 
 typedef struct candidate_s {
@@ -108,29 +114,49 @@ static void consider(candidate_t *best, int64_t px, int64_t ph, int64_t x, int64
     }
 }
 
+static void planar_arcs(planar_t *pl)
+{
+    int side;
+    for (side = 0; side < 2; ++side) {
+        /* g fixed at a limit: foot on a circle about the hip */
+        int32_t gl = side ? pl->g_hi : pl->g_lo;
+        int32_t tl = side ? pl->t_hi : pl->t_lo;
+        xgo_q30_t sg, cg, st, ct;
+        int64_t fx, fh;
+        xgo_sincos((uint32_t)gl, &sg, &cg);
+        fx = round_shift(pl->l2 * cg, 30); /* foot in the thigh frame */
+        fh = pl->l1 + round_shift(pl->l2 * sg, 30);
+        pl->hip_r[side] = (int64_t)isqrt64_round((uint64_t)(fx * fx + fh * fh));
+        pl->hip_a[side] = u_angle64(fx, fh); /* foot direction past the thigh */
+        /* t2 fixed at a limit: foot on a circle about the knee */
+        xgo_sincos((uint32_t)tl, &st, &ct);
+        pl->knee_x[side] = -round_shift(pl->l1 * st, 30);
+        pl->knee_h[side] = round_shift(pl->l1 * ct, 30);
+    }
+    pl->arcs_ready = 1;
+}
+
 /* Nearest point of the reachable region to (x, h): the region is the image
  * of the limit box, so its boundary is four arcs (g at a limit: circles
  * about the hip; t2 at a limit: circles about the knee). */
-static void planar_project(const planar_t *pl, int64_t x, int64_t h, xgo_bam_t *g, xgo_bam_t *t2)
+static void planar_project(planar_t *pl, int64_t x, int64_t h, xgo_bam_t *g, xgo_bam_t *t2)
 {
     candidate_t best;
     int side;
+    xgo_bam_t target = u_angle64(x, h);
+    if (!pl->arcs_ready) {
+        planar_arcs(pl);
+    }
     best.dist2 = INT64_MAX;
     best.g = (uint32_t)pl->g_lo;
     best.t2 = (uint32_t)pl->t_lo;
     for (side = 0; side < 2; ++side) {
         /* g fixed at a limit: foot on a circle about the hip */
         int32_t gl = side ? pl->g_hi : pl->g_lo;
-        xgo_q30_t sg, cg, sp, cp;
-        int64_t fx, fh, r;
-        xgo_bam_t a, psi;
-        xgo_sincos((uint32_t)gl, &sg, &cg);
-        fx = round_shift(pl->l2 * cg, 30);           /* foot in the thigh frame */
-        fh = pl->l1 + round_shift(pl->l2 * sg, 30);
-        r = (int64_t)isqrt64_round((uint64_t)(fx * fx + fh * fh));
-        a = u_angle64(fx, fh);                        /* foot direction past the thigh */
-        psi = clamp_arc(u_angle64(x, h), (uint32_t)pl->t_lo + a,
-                        (uint32_t)pl->t_hi - (uint32_t)pl->t_lo);
+        int64_t r = pl->hip_r[side];
+        xgo_bam_t a = pl->hip_a[side];
+        xgo_q30_t sp, cp;
+        xgo_bam_t psi = clamp_arc(target, (uint32_t)pl->t_lo + a, (uint32_t)pl->t_hi - (uint32_t)pl->t_lo);
         xgo_sincos(psi, &sp, &cp);
         consider(&best, -round_shift(r * sp, 30), round_shift(r * cp, 30), x, h, (uint32_t)gl,
                  psi - a);
@@ -138,12 +164,9 @@ static void planar_project(const planar_t *pl, int64_t x, int64_t h, xgo_bam_t *
     for (side = 0; side < 2; ++side) {
         /* t2 fixed at a limit: foot on a circle about the knee */
         int32_t tl = side ? pl->t_hi : pl->t_lo;
-        xgo_q30_t st, ct, sb, cb;
-        int64_t kx, kh;
+        int64_t kx = pl->knee_x[side], kh = pl->knee_h[side];
+        xgo_q30_t sb, cb;
         xgo_bam_t b, b_lo;
-        xgo_sincos((uint32_t)tl, &st, &ct);
-        kx = -round_shift(pl->l1 * st, 30);
-        kh = round_shift(pl->l1 * ct, 30);
         /* shank u-angle b = t2 + g - 90deg, g within its limits */
         b_lo = (uint32_t)tl + (uint32_t)pl->g_lo - XGO_BAM_90;
         b = clamp_arc(u_angle64(x - kx, h - kh), b_lo, (uint32_t)pl->g_hi - (uint32_t)pl->g_lo);
@@ -156,7 +179,7 @@ static void planar_project(const planar_t *pl, int64_t x, int64_t h, xgo_bam_t *
 }
 
 /* In-plane IK for (x, h) in q4. Returns 1 if the target had to be projected. */
-static int planar_ik(const planar_t *pl, int64_t x, int64_t h, xgo_bam_t *g_out, xgo_bam_t *t2_out)
+static int planar_ik(planar_t *pl, int64_t x, int64_t h, xgo_bam_t *g_out, xgo_bam_t *t2_out)
 {
     int64_t r2 = x * x + h * h;
     int64_t n = r2 - pl->l1 * pl->l1 - pl->l2 * pl->l2;
@@ -238,7 +261,7 @@ typedef struct leg_solution_s {
 
 /* One branch of the abduction solution: the foot at h = branch * |h| in the
  * leg plane (branch +1: at or below the thigh joint, -1: above it). */
-static void solve_branch(const planar_t *pl, int32_t a_lo, int32_t a_hi, int64_t xq, int64_t wp,
+static void solve_branch(planar_t *pl, int32_t a_lo, int32_t a_hi, int64_t xq, int64_t wp,
                          int32_t z, int32_t d, int64_t h_abs, int branch, leg_solution_t *s)
 {
     int64_t h = branch > 0 ? h_abs : -h_abs;
@@ -296,6 +319,7 @@ int xgo_leg_ik(const xgo_profile_t *p, xgo_leg_t leg, const xgo_vec3_t *foot_um,
     pl.g_hi = xgo_bam_signed(xgo_mdeg_to_bam(p->joint_mdeg[XGO_JOINT_KNEE].hi) + knee_off);
     pl.t_lo = limit_bam(p->joint_mdeg[XGO_JOINT_HIP].lo);
     pl.t_hi = limit_bam(p->joint_mdeg[XGO_JOINT_HIP].hi);
+    pl.arcs_ready = 0;
 
     /* Across the abduction axis: wp is the target's outward distance from
      * the axis, h its distance along the leg plane (Pythagoras with d). A
