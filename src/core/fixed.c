@@ -7,6 +7,8 @@
  */
 #include "xgo/fixed.h"
 
+#include "wide.h"
+
 /* The shifts below rely on >> of a negative value being arithmetic (GCC and
  * Clang guarantee it). Refuse to compile where it is not. */
 typedef char xgo_fixed_asr_check_[((-1 >> 1) == -1 && ((int64_t)-1 >> 1) == -1) ? 1 : -1];
@@ -46,7 +48,7 @@ int32_t xgo_sat_abs(int32_t a)
 
 int32_t xgo_mul_q(int32_t a, int32_t b, unsigned q)
 {
-    int64_t p = (int64_t)a * b; /* |p| <= 2^62: exact */
+    int64_t p = xgo_mul_wide(a, b); /* |p| <= 2^62: exact */
     if (q > 31u) {
         q = 31u;
     }
@@ -217,7 +219,7 @@ xgo_q16_t xgo_q16_sqrt(xgo_q16_t x)
     v = (uint64_t)(uint32_t)x << 16; /* sqrt(x / 2^16) * 2^16 = sqrt(x * 2^16) */
     r = xgo_isqrt64(v);
     /* round: (r + 1/2)^2 = r^2 + r + 1/4, so round up iff v - r^2 > r */
-    if (v - (uint64_t)r * r > r) {
+    if (v - xgo_umul_wide(r, r) > r) {
         ++r;
     }
     return (xgo_q16_t)r; /* <= sqrt(2^47) < 2^24 */
@@ -229,14 +231,14 @@ xgo_q16_t xgo_q16_sqrt(xgo_q16_t x)
  * applied modulo 2^32 (exact), the fraction as a Q32 multiplier:
  * round(5228/11250 * 2^32). */
 #define MDEG_TO_BAM_INT 11930u
-#define MDEG_TO_BAM_FRAC_Q32 1995919024LL
+#define MDEG_TO_BAM_FRAC_Q32 1995919024 /* < 2^31 */
 
 xgo_bam_t xgo_mdeg_to_bam(int32_t mdeg)
 {
     uint32_t whole = (uint32_t)mdeg * MDEG_TO_BAM_INT; /* modulo 2^32 */
     /* |mdeg| <= 2^31, multiplier < 2^31: the product fits in int64; the
      * multiplier's rounding adds at most 0.25 LSB at |mdeg| = 2^31. */
-    int64_t frac = ((int64_t)mdeg * MDEG_TO_BAM_FRAC_Q32 + ((int64_t)1 << 31)) >> 32;
+    int64_t frac = (xgo_mul_wide(mdeg, MDEG_TO_BAM_FRAC_Q32) + ((int64_t)1 << 31)) >> 32;
     return whole + (uint32_t)(uint64_t)frac;
 }
 
@@ -250,7 +252,7 @@ int32_t xgo_bam_signed(xgo_bam_t a)
 
 int32_t xgo_bam_to_mdeg(xgo_bam_t a)
 {
-    int64_t p = (int64_t)xgo_bam_signed(a) * XGO_MDEG_PER_TURN; /* |p| < 2^50 */
+    int64_t p = xgo_mul_wide(xgo_bam_signed(a), XGO_MDEG_PER_TURN); /* |p| < 2^50 */
     return (int32_t)((p + ((int64_t)1 << 31)) >> 32);
 }
 
@@ -283,8 +285,11 @@ static const int32_t sin_tab[129] = {
 };
 
 /* pi/2 * 2^34: converts a BAM offset d to radians in Q34
- * (d * 2pi / 2^32 * 2^34 = d * pi/2 * 2^4, done as d * PI_2_Q34 / 2^30). */
+ * (d * 2pi / 2^32 * 2^34 = d * pi/2 * 2^4, done as d * PI_2_Q34 / 2^30).
+ * Above 2^32, so multiplied in two parts: 6 * 2^32 + PI_2_Q34_LOW. */
 #define PI_2_Q34 26986075409LL
+#define PI_2_Q34_HIGH 6
+#define PI_2_Q34_LOW 1216271633 /* PI_2_Q34 - 6 * 2^32, < 2^31 */
 
 static int32_t clamp_unit(int32_t v)
 {
@@ -323,19 +328,20 @@ void xgo_sincos(xgo_bam_t a, xgo_q30_t *sin_out, xgo_q30_t *cos_out)
     int32_t d = (int32_t)r - (int32_t)(k << 23); /* |d| <= 2^22 BAM */
     /* The offset from the node in Q34 radians: |dr| <= pi/512 * 2^34 ~ 1.1e8.
      * Q34 keeps the correction terms 16x finer than the Q30 result. */
-    int64_t dr = rshift_round((int64_t)d * PI_2_Q34, 30);
-    int64_t half_d2 = rshift_round(dr * dr, 35);            /* dr^2/2, <= 3.2e5 */
-    int64_t d3_2 = rshift_round(dr * half_d2, 34);          /* dr^3/2, <= 1.1e3 */
+    int32_t dr = (int32_t)rshift_round((int64_t)(d * PI_2_Q34_HIGH) * ((int64_t)1 << 32) +
+                                           xgo_mul_wide(d, PI_2_Q34_LOW), 30);
+    int32_t half_d2 = (int32_t)rshift_round(xgo_mul_wide(dr, dr), 35);   /* dr^2/2, <= 3.2e5 */
+    int32_t d3_2 = (int32_t)rshift_round(xgo_mul_wide(dr, half_d2), 34); /* dr^3/2, <= 1.1e3 */
     /* sin(dr) = dr - dr^3/6 (next term < 1e-13),
      * cos(dr) = 1 - dr^2/2 (next term dr^4/24 < 6e-11 = 0.07 LSB) */
-    int64_t sd = dr - div3_small((int32_t)d3_2); /* |d3_2| <= 1.1e3 */
-    int64_t s0 = sin_tab[k];
-    int64_t c0 = sin_tab[128u - k];
+    int32_t sd = dr - div3_small(d3_2); /* |d3_2| <= 1.1e3 */
+    int32_t s0 = sin_tab[k];
+    int32_t c0 = sin_tab[128u - k];
     /* angle addition: sin(a+d) = s0 cos d + c0 sin d
      *                 cos(a+d) = c0 cos d - s0 sin d
-     * with cos d = 1 - half_d2; all products < 2^58 */
-    int32_t s = clamp_unit((int32_t)(s0 + rshift_round(c0 * sd - s0 * half_d2, 34)));
-    int32_t c = clamp_unit((int32_t)(c0 - rshift_round(s0 * sd + c0 * half_d2, 34)));
+     * with cos d = 1 - half_d2; all products < 2^58 (32-bit factors) */
+    int32_t s = clamp_unit((int32_t)(s0 + rshift_round(xgo_mul_wide(c0, sd) - xgo_mul_wide(s0, half_d2), 34)));
+    int32_t c = clamp_unit((int32_t)(c0 - rshift_round(xgo_mul_wide(s0, sd) + xgo_mul_wide(c0, half_d2), 34)));
     int32_t so, co;
     switch (quadrant) {
     case 0u:
@@ -392,6 +398,7 @@ static const int64_t cordic_atan_tab[CORDIC_ITERS + 1] = {
 
 /* 2^40 / (2 pi): radians -> 2^-8 BAM, for the final residual. */
 #define RAD_TO_Z 174992710548LL
+#define RAD_TO_Z_LOW 3194018708u /* RAD_TO_Z - 40 * 2^32 */
 
 /* One CORDIC vectoring step: rotate (x, y) toward the x axis by
  * atan(2^-i), accumulating the angle. Shifts are rounded so the truncation
@@ -445,6 +452,7 @@ static uint32_t cordic_octant(uint32_t ux, uint32_t uy)
     int32_t y = (int32_t)uy;
     int64_t z = 0;
     int64_t t;
+    uint64_t pz;
     /* i = 0 (45 degrees) is not needed: the octant reduction leaves at
      * most 45 degrees and steps 1.. converge over 54.9 degrees. */
     CORDIC_STEP(1);
@@ -467,9 +475,12 @@ static uint32_t cordic_octant(uint32_t ux, uint32_t uy)
         uint32_t w = (u * u) >> 14; /* ~ t^2 / 2^32 */
         uint32_t c = (w * u) >> 23; /* ~ t^3 / 2^64 */
         ut -= ((c + 1u) * 21846u) >> 16; /* (c + 1) / 3, exact for c < 2^15 */
-        t = y < 0 ? -(int64_t)ut : (int64_t)ut;
+        /* t * RAD_TO_Z (< 2^63) as |t| * 40 * 2^32 + |t| * RAD_TO_Z_LOW:
+         * 32-bit factors (|t| * 40 < 2^31) */
+        pz = ((uint64_t)(ut * 40u) << 32) + xgo_umul_wide(ut, RAD_TO_Z_LOW);
+        t = y < 0 ? -(int64_t)pz : (int64_t)pz;
     }
-    z += (t * RAD_TO_Z + ((int64_t)1 << 31)) >> 32; /* |t * RAD_TO_Z| < 2^63 */
+    z += (t + ((int64_t)1 << 31)) >> 32;
     return (uint32_t)((z + ((int64_t)1 << (CORDIC_Z_SHIFT - 1))) >> CORDIC_Z_SHIFT);
 }
 
@@ -567,9 +578,9 @@ xgo_bam_t xgo_atan2_64(int64_t y, int64_t x)
 static int32_t unit_complement(int32_t x)
 {
     /* both factors are in [0, 2^31]: compute them in 64 bits */
-    uint64_t p = (uint64_t)((int64_t)XGO_Q30_ONE - x) * (uint64_t)((int64_t)XGO_Q30_ONE + x); /* Q60 */
+    uint64_t p = xgo_umul_wide((uint32_t)XGO_Q30_ONE - (uint32_t)x, (uint32_t)XGO_Q30_ONE + (uint32_t)x); /* Q60 */
     uint32_t r = xgo_isqrt64(p);
-    if (p - (uint64_t)r * r > r) {
+    if (p - xgo_umul_wide(r, r) > r) {
         ++r; /* round to nearest */
     }
     return (int32_t)r; /* <= 2^30 */

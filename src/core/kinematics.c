@@ -17,6 +17,8 @@
  */
 #include "xgo/kinematics.h"
 
+#include "wide.h" /* 32 x 32 -> 64 products without a libgcc call on a Cortex-M0 */
+
 #define Q4_SHIFT 4             /* planar lengths in 1/16 um */
 #define Q4_ONE 16              /* 2^Q4_SHIFT: scale by multiplying (<< of a negative value is undefined) */
 #define FAR_LIMIT_UM (1 << 20) /* targets beyond ~1 m are scaled down */
@@ -71,7 +73,7 @@ static xgo_bam_t clamp_arc(xgo_bam_t a, xgo_bam_t lo, uint32_t width)
 static uint32_t isqrt64_round(uint64_t v)
 {
     uint32_t r = xgo_isqrt64(v);
-    if (v - (uint64_t)r * r > r && r != 0xFFFFFFFFu) {
+    if (v - xgo_umul_wide(r, r) > r && r != 0xFFFFFFFFu) {
         ++r;
     }
     return r;
@@ -204,7 +206,7 @@ static int planar_ik(planar_t *pl, int64_t x, int64_t h, xgo_bam_t *g_out, xgo_b
     if (nn < -dn) {
         nn = -dn;
     }
-    cn = isqrt64_round((uint64_t)(dn - nn) * (uint64_t)(dn + nn));
+    cn = isqrt64_round(xgo_umul_wide((uint32_t)(dn - nn), (uint32_t)(dn + nn))); /* each <= 2^31 */
     g = xgo_atan2((int32_t)nn, (int32_t)cn);
     /* t2 = u-angle of the foot (x, h) minus the foot's angle past the thigh,
      * the u-angle of (a, b) = (L2 cos g, L1 + L2 sin g) (scaled by dn). As
@@ -369,13 +371,13 @@ void xgo_leg_fk(const xgo_profile_t *p, xgo_leg_t leg, const int32_t q_mdeg[XGO_
 
 static int32_t mul30(int32_t a, int32_t b)
 {
-    return (int32_t)round_shift((int64_t)a * b, 30);
+    return (int32_t)round_shift(xgo_mul_wide(a, b), 30);
 }
 
 /* a*b + c*d in Q30, clamped to [-1, 1] (rounding may push |x| past 1). */
 static int32_t dot30(int32_t a, int32_t b, int32_t c, int32_t d)
 {
-    int64_t v = round_shift((int64_t)a * b + (int64_t)c * d, 30);
+    int64_t v = round_shift(xgo_mul_wide(a, b) + xgo_mul_wide(c, d), 30);
     return v > XGO_Q30_ONE ? XGO_Q30_ONE : (v < -XGO_Q30_ONE ? -XGO_Q30_ONE : (int32_t)v);
 }
 
@@ -404,13 +406,13 @@ void xgo_body_ik(const xgo_profile_t *p, const xgo_body_pose_t *pose,
     for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
         /* foot relative to the body centre, in machine axes, saturated to
          * int32 so the products below stay within 2^61 */
-        int64_t vx = sat_i32((int64_t)feet_machine_um[leg].x - pose->x_um);
-        int64_t vy = sat_i32((int64_t)feet_machine_um[leg].y - pose->y_um);
-        int64_t vz = sat_i32((int64_t)feet_machine_um[leg].z - pose->z_um);
+        int32_t vx = sat_i32((int64_t)feet_machine_um[leg].x - pose->x_um);
+        int32_t vy = sat_i32((int64_t)feet_machine_um[leg].y - pose->y_um);
+        int32_t vz = sat_i32((int64_t)feet_machine_um[leg].z - pose->z_um);
         /* into body axes: R^T v; each term < 2^61, the sum < 2^63 */
-        int64_t bx = round_shift(m[0][0] * vx + m[1][0] * vy + m[2][0] * vz, 30);
-        int64_t by = round_shift(m[0][1] * vx + m[1][1] * vy + m[2][1] * vz, 30);
-        int64_t bz = round_shift(m[0][2] * vx + m[1][2] * vy + m[2][2] * vz, 30);
+        int64_t bx = round_shift(xgo_mul_wide(m[0][0], vx) + xgo_mul_wide(m[1][0], vy) + xgo_mul_wide(m[2][0], vz), 30);
+        int64_t by = round_shift(xgo_mul_wide(m[0][1], vx) + xgo_mul_wide(m[1][1], vy) + xgo_mul_wide(m[2][1], vz), 30);
+        int64_t bz = round_shift(xgo_mul_wide(m[0][2], vx) + xgo_mul_wide(m[1][2], vy) + xgo_mul_wide(m[2][2], vz), 30);
         /* into the leg frame: origin at the thigh joint, z down */
         int32_t ox = xgo_leg_side_x((xgo_leg_t)leg) * p->hip_x_um;
         int32_t oy = xgo_leg_side_y((xgo_leg_t)leg) * (p->hip_y_um + p->abad_offset_um);

@@ -1,0 +1,75 @@
+/*
+ * wide.h - 32 x 32 -> 64-bit products for the core (private, not installed).
+ *
+ * Why: a Cortex-M0/M0+ (ARMv6-M) has only MULS, which keeps the low 32 bits
+ * of a product; for every (int64_t)a * b GCC calls libgcc's general 64 x 64
+ * multiply __aeabi_lmul (about 41 instructions plus the call). When both
+ * operands are 32-bit values, four 16 x 16 -> 32-bit MULS and a few adds
+ * give the exact product in about half that, inline. Everywhere else (x86,
+ * Cortex-M3 and up: one widening multiply instruction) the plain product is
+ * used. Both are exact, so results are bit-identical on every target
+ * (tools/mcu/run.sh compares them).
+ *
+ * Define XGO_WIDE_MUL_SPLIT to use the 16-bit form on any target (tests).
+ */
+#ifndef XGO_CORE_WIDE_H
+#define XGO_CORE_WIDE_H
+
+#include <stdint.h>
+
+/* Inline even at -Os: a call would eat most of the gain. */
+#if defined(__GNUC__)
+#define XGO_WIDE_FN static inline __attribute__((always_inline))
+#else
+#define XGO_WIDE_FN static inline
+#endif
+
+#if defined(XGO_WIDE_MUL_SPLIT) || defined(__ARM_ARCH_6M__) || defined(__ARM_ARCH_8M_BASE__)
+
+/* Unsigned 32 x 32 -> 64 from 16-bit halves. */
+XGO_WIDE_FN uint64_t xgo_umul_wide(uint32_t a, uint32_t b)
+{
+    uint32_t al = a & 0xFFFFu, ah = a >> 16, bl = b & 0xFFFFu, bh = b >> 16;
+    uint32_t lo = al * bl, hi = ah * bh;
+    uint32_t m1 = al * bh, m2 = ah * bl; /* each < 2^32 */
+    uint32_t mid = m1 + m2;              /* may wrap: the carry is worth 2^48 */
+    uint32_t t;
+    hi += (mid < m1 ? 0x10000u : 0u) + (mid >> 16);
+    t = lo + (mid << 16);
+    hi += t < lo ? 1u : 0u;
+    return ((uint64_t)hi << 32) | t;
+}
+
+/* Signed: the unsigned product of the two's-complement bit patterns, minus
+ * 2^32 * b if a < 0 and 2^32 * a if b < 0 (modulo 2^64); the result is
+ * exact since |a * b| <= 2^62. */
+XGO_WIDE_FN int64_t xgo_mul_wide(int32_t a, int32_t b)
+{
+    uint64_t p = xgo_umul_wide((uint32_t)a, (uint32_t)b);
+    uint32_t hi = (uint32_t)(p >> 32);
+    if (a < 0) {
+        hi -= (uint32_t)b;
+    }
+    if (b < 0) {
+        hi -= (uint32_t)a;
+    }
+    p = ((uint64_t)hi << 32) | (uint32_t)p;
+    /* two's complement view (the core assumes it; see fixed.c) */
+    return p <= (uint64_t)INT64_MAX ? (int64_t)p : -(int64_t)(~p) - 1;
+}
+
+#else
+
+XGO_WIDE_FN uint64_t xgo_umul_wide(uint32_t a, uint32_t b)
+{
+    return (uint64_t)a * b;
+}
+
+XGO_WIDE_FN int64_t xgo_mul_wide(int32_t a, int32_t b)
+{
+    return (int64_t)a * b;
+}
+
+#endif
+
+#endif /* XGO_CORE_WIDE_H */
