@@ -168,13 +168,16 @@ uint32_t xgo_isqrt32(uint32_t x)
     return r;
 }
 
-/* Digit by digit, two bits of x per bit of the root: the state after the
- * high word is (floor(sqrt(hi)), hi - root^2), which xgo_isqrt32 gives; the
- * low word's 16 bit pairs follow. The remainder is at most twice the root,
- * so 32 bits hold it for all but the last two steps (done in 64 bits): a
- * third of the old all-64-bit loop's instructions on a 32-bit core. */
+/* Exact floor, bit by bit. On a narrow core (wide.h): digit by digit, two
+ * bits of x per bit of the root; the state after the high word is
+ * (floor(sqrt(hi)), hi - root^2), which xgo_isqrt32 gives, then the low
+ * word's 16 bit pairs follow. The remainder is at most twice the root, so 32
+ * bits hold it for all but the last two steps (done in 64 bits): a third of
+ * the all-64-bit loop's instructions on a Cortex-M0. With 64-bit registers
+ * the plain 64-bit loop is shorter. */
 uint32_t xgo_isqrt64(uint64_t x)
 {
+#if XGO_CORE_NARROW_CPU
     uint32_t hi = (uint32_t)(x >> 32), lo = (uint32_t)x;
     uint32_t r, rem;
     uint64_t rem64, trial64;
@@ -207,6 +210,28 @@ uint32_t xgo_isqrt64(uint64_t x)
         }
     }
     return r;
+#else
+    /* bit by bit over 64 bits */
+    uint64_t r = 0;
+    uint64_t bit;
+    unsigned top;
+    if (x <= 0xFFFFFFFFu) {
+        return xgo_isqrt32((uint32_t)x);
+    }
+    /* start at the highest even bit position not above x's top bit */
+    top = 63u - clz32((uint32_t)(x >> 32));
+    bit = (uint64_t)1 << (top & ~1u);
+    while (bit != 0u) {
+        if (x >= r + bit) {
+            x -= r + bit;
+            r = (r >> 1) + bit;
+        } else {
+            r >>= 1;
+        }
+        bit >>= 2;
+    }
+    return (uint32_t)r;
+#endif
 }
 
 xgo_q16_t xgo_q16_sqrt(xgo_q16_t x)
@@ -423,9 +448,11 @@ static const int64_t cordic_atan_tab[CORDIC_ITERS + 1] = {
  * 32 bits (the remainder stays below d < 2^31, so doubling it cannot
  * overflow); the quotient is below 2^25, so the first 7 of its 32 bits are
  * zero and n starts pre-shifted by 7. Cores without a divider (Cortex-M0)
- * would otherwise call a 64-bit division routine here. */
+ * would otherwise call a 64-bit division routine here; with one, the
+ * division itself is cheaper (same result). */
 static uint32_t frac_q32(uint32_t n, uint32_t d)
 {
+#if XGO_CORE_NARROW_CPU
     uint32_t r = n << 7; /* < d */
     uint32_t q = 0;
     int i;
@@ -442,6 +469,9 @@ static uint32_t frac_q32(uint32_t n, uint32_t d)
         ++q;
     }
     return q;
+#else
+    return (uint32_t)((((uint64_t)n << 32) + (d >> 1)) / d);
+#endif
 }
 
 /* Angle of (ux, uy) with ux >= uy > 0 and ux in [2^29, 2^30); result in

@@ -470,11 +470,12 @@ uint8_t xgo_range_to_byte(const xgo_range_t *r, int32_t v)
     if (v >= r->hi) {
         return 255u;
     }
-    if (span < ((int64_t)1 << 24)) {
+    if (XGO_CORE_NARROW_CPU && span < ((int64_t)1 << 24)) {
         /* 32-bit (the servo and foot ranges, every tick): 0 < off < span <
          * 2^24, so num = 255 * off < 2^32 and span << 7 < 2^31. The quotient
          * is below 255: eight steps of restoring division give it exactly,
-         * with no divide call on cores without a divider (Cortex-M0). */
+         * with no divide call on cores without a divider (Cortex-M0; with
+         * one, the plain division below is cheaper). */
         uint32_t num32 = 255u * ((uint32_t)v - (uint32_t)r->lo);
         uint32_t den = (uint32_t)span << 7;
         uint32_t q = 0;

@@ -10,7 +10,8 @@
  * used. Both are exact, so results are bit-identical on every target
  * (tools/mcu/run.sh compares them).
  *
- * Define XGO_WIDE_MUL_SPLIT to use the 16-bit form on any target (tests).
+ * Define XGO_WIDE_MUL_SPLIT to use the 16-bit form (and the division loops
+ * below) on any target (tests).
  */
 #ifndef XGO_CORE_WIDE_H
 #define XGO_CORE_WIDE_H
@@ -22,6 +23,17 @@
 #define XGO_WIDE_FN static inline __attribute__((always_inline))
 #else
 #define XGO_WIDE_FN static inline
+#endif
+
+/* XGO_CORE_NARROW_CPU: a core without a divide instruction and without
+ * 64-bit or widening arithmetic (ARMv6-M). There a few hot divisions whose
+ * quotient has few bits are restoring-division loops and the 64-bit square
+ * root runs mostly in 32 bits; elsewhere one divide instruction or the
+ * plain 64-bit loop is cheaper. Every variant is exact: same results. */
+#if defined(XGO_WIDE_MUL_SPLIT) || defined(__ARM_ARCH_6M__) || defined(__ARM_ARCH_8M_BASE__)
+#define XGO_CORE_NARROW_CPU 1
+#else
+#define XGO_CORE_NARROW_CPU 0
 #endif
 
 #if defined(XGO_WIDE_MUL_SPLIT) || defined(__ARM_ARCH_6M__) || defined(__ARM_ARCH_8M_BASE__)
