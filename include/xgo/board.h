@@ -21,21 +21,13 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "xgo/config.h"
 #include "xgo/motion.h"
 #include "xgo/protocol.h"
 #include "xgo/regs.h"
 
 #ifdef __cplusplus
 extern "C" {
-#endif
-
-/* Control loop rate (docs/decisions.md). */
-#define XGO_TICK_HZ 500u
-
-/* Transmit buffer: replies wait here until the port drains them. Override at
- * compile time for small MCUs; a reply is at most 255 bytes. */
-#ifndef XGO_TX_BUFFER_SIZE
-#define XGO_TX_BUFFER_SIZE 1024u
 #endif
 
 typedef enum xgo_model_e { XGO_MODEL_MINI = 0, XGO_MODEL_LITE = 1 } xgo_model_t;

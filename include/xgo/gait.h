@@ -11,7 +11,7 @@
  * 0x09, 0x3C and 0x3D into an xgo_gait_command_t.
  *
  *   xgo_gait_init(&g, stance);          // standing, four feet at stance
- *   every 1/XGO_TICK_HZ s (2 ms):
+ *   every 1/XGO_TICK_HZ s:
  *     xgo_gait_tick(&g, &cmd);          // one period
  *     use g.foot_um, g.contact, g.vx_um_s, g.vy_um_s, g.vyaw_mdeg_s
  *
@@ -52,6 +52,8 @@
 #define XGO_GAIT_H
 
 #include <stdint.h>
+
+#include "xgo/config.h" /* XGO_TICK_HZ */
 
 /* Legs 1..4 = indices 0..3: XGO_LEG_LF, _RF, _RH, _LH and XGO_LEG_COUNT, from
  * the one place legs are numbered (only the enum is used here). */
@@ -108,9 +110,10 @@ typedef enum xgo_pace_e { XGO_PACE_NORMAL = 0, XGO_PACE_SLOW = 1, XGO_PACE_HIGH 
 #define XGO_GAIT_MAX_STEP_TROT_UM 3000
 
 /* Ticks from a zero command (mark time off) to standing, from any state:
- * the ramp down (250 ticks from the vendor maxima, 500 from the clamps)
- * plus at most 1.25 cycles at the slowest cadence (slow walk, 1.2 s). */
-#define XGO_GAIT_STOP_TICKS_MAX 1300u
+ * the ramp down (0.5 s from the vendor maxima, 1 s from the clamps) plus at
+ * most 1.25 cycles at the slowest cadence (slow walk, 1.2 s): 2.6 s, 1300
+ * ticks at 500 Hz. */
+#define XGO_GAIT_STOP_TICKS_MAX (XGO_TICK_HZ * 13u / 5u)
 
 /* ------------------------------------------------------------ types */
 
@@ -175,7 +178,7 @@ typedef struct xgo_gait_s {
  * x and y are clamped to +-200 mm. */
 void xgo_gait_init(xgo_gait_t *g, const int32_t stance_um[XGO_LEG_COUNT][3]);
 
-/* Advance one control period (2 ms) under cmd. */
+/* Advance one control period (1 / XGO_TICK_HZ s) under cmd. */
 void xgo_gait_tick(xgo_gait_t *g, const xgo_gait_command_t *cmd);
 
 /* 1 when stopped with all four feet down exactly at the stance points. */

@@ -19,6 +19,7 @@
 
 #include <stdint.h>
 
+#include "xgo/config.h"
 #include "xgo/profile.h"
 #include "xgo/actions.h"
 #include "xgo/gait.h"
@@ -54,15 +55,14 @@ typedef enum xgo_mode_e {
 #define XGO_MARK_TIME_MIN_UM 10000
 
 /* Joint speed outside servo mode: the bound on how far any joint moves in one
- * tick (600 deg/s at 500 Hz). */
-#define XGO_JOINT_STEP_MAX_MDEG 1200
+ * tick (600 deg/s; 1200 mdeg at 500 Hz). */
+#define XGO_JOINT_STEP_MAX_MDEG ((int32_t)(600000u / XGO_TICK_HZ))
 /* Servo mode, register 0x5C: byte 0..255 -> 10 .. 600 deg/s. */
 #define XGO_SERVO_SPEED_MIN_MDEG_S 10000
 #define XGO_SERVO_SPEED_MAX_MDEG_S 600000
 
 typedef struct xgo_motion_s {
     const xgo_profile_t *profile;
-    uint32_t tick_hz;
     uint8_t mode;             /* xgo_mode_t */
     uint8_t group_mode;       /* the mode the last group write selected */
     uint8_t perform;          /* 0x03 = 1: cycle actions */
@@ -89,8 +89,7 @@ typedef struct xgo_motion_s {
     } ik_cache;
 } xgo_motion_t;
 
-void xgo_motion_init(xgo_motion_t *m, const xgo_profile_t *profile, uint8_t battery_pct,
-                     uint32_t tick_hz);
+void xgo_motion_init(xgo_motion_t *m, const xgo_profile_t *profile, uint8_t battery_pct);
 
 /* One control tick: consume host writes in regs, move, publish state to regs. */
 void xgo_motion_tick(xgo_motion_t *m, xgo_regs_t *regs);

@@ -23,6 +23,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "xgo/config.h" /* XGO_PARSER_DEFAULT_TIMEOUT_MS */
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -42,9 +44,6 @@ extern "C" {
 #define XGO_TYPE_WRITE_LEGACY 0x01u /* older vendor libraries and the ROS driver */
 #define XGO_TYPE_READ 0x02u
 #define XGO_TYPE_READ_REPLY 0x12u
-
-/* Default mid-frame silence after which a partial frame is abandoned. */
-#define XGO_PARSER_DEFAULT_TIMEOUT_MS 20u
 
 /* A validated frame. `data` points into the parser's buffer and is valid only
  * during the sink callback. For a read request data[0] is the byte count. */

@@ -19,14 +19,18 @@
 
 #include <stdint.h>
 
+#include "xgo/config.h" /* XGO_TICK_HZ */
+
 #ifdef __cplusplus
 extern "C" {
 #endif
 
-/* Drain per control tick at 500 Hz, micro-percent: 100 % lasts 120 min idle
- * and 60 min walking. */
-#define XGO_BATTERY_IDLE_UPCT_PER_TICK 28u   /* 1e8 / (120 * 60 * 500) = 27.8 */
-#define XGO_BATTERY_WALK_UPCT_PER_TICK 56u   /* 1e8 / ( 60 * 60 * 500) = 55.6 */
+/* Drain per control tick, micro-percent, rounded: 100 % lasts 120 min idle
+ * and 60 min walking (at 500 Hz: 1e8 / 3.6e6 = 27.8 -> 28, 55.6 -> 56). */
+#define XGO_BATTERY_UPCT_PER_TICK_(minutes)                                                    \
+    ((100000000u + (minutes)*60u * XGO_TICK_HZ / 2u) / ((minutes)*60u * XGO_TICK_HZ))
+#define XGO_BATTERY_IDLE_UPCT_PER_TICK XGO_BATTERY_UPCT_PER_TICK_(120u)
+#define XGO_BATTERY_WALK_UPCT_PER_TICK XGO_BATTERY_UPCT_PER_TICK_(60u)
 
 typedef struct xgo_battery_s {
     uint32_t charge_upct; /* 0 .. 100,000,000 */
@@ -39,7 +43,7 @@ uint8_t xgo_battery_percent(const xgo_battery_t *b);
 typedef struct xgo_imu_s {
     int32_t ground_roll_mdeg;  /* tilt of the ground under the robot */
     int32_t ground_pitch_mdeg;
-    int32_t yaw_acc;           /* integrated yaw, mdeg * XGO_IMU_TICK_HZ, wrapped */
+    int32_t yaw_acc;           /* integrated yaw, mdeg * XGO_TICK_HZ, wrapped */
     int32_t roll_mdeg;         /* outputs, updated by xgo_imu_tick */
     int32_t pitch_mdeg;
     int32_t yaw_mdeg;
@@ -50,10 +54,10 @@ void xgo_imu_set_ground_tilt(xgo_imu_t *imu, int32_t roll_mdeg, int32_t pitch_md
 /* Zero the integrated yaw (action 255 does this, like a power-up). */
 void xgo_imu_reset_yaw(xgo_imu_t *imu);
 
-/* One tick: body attitude relative to the ground (mdeg), the body's yaw rate
- * (mdeg/s) and the tick rate (Hz). */
+/* One tick (1 / XGO_TICK_HZ s): body attitude relative to the ground (mdeg)
+ * and the body's yaw rate (mdeg/s). */
 void xgo_imu_tick(xgo_imu_t *imu, int32_t body_roll_mdeg, int32_t body_pitch_mdeg,
-                  int32_t body_yaw_mdeg, int32_t yaw_rate_mdeg_s, uint32_t tick_hz);
+                  int32_t body_yaw_mdeg, int32_t yaw_rate_mdeg_s);
 
 #ifdef __cplusplus
 }

@@ -27,7 +27,7 @@
 
 #include <stddef.h>
 
-#include "xgo/board.h" /* XGO_TICK_HZ */
+#include "xgo/config.h" /* XGO_TICK_HZ */
 
 #if (XGO_TICK_HZ % 100u) != 0u
 #error "actions: keyframe times are centiseconds; XGO_TICK_HZ must be a multiple of 100"

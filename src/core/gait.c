@@ -27,24 +27,28 @@
  */
 #include "xgo/gait.h"
 
+#include "xgo/config.h" /* XGO_TICK_HZ */
 #include "xgo/fixed.h"
 
 /* ------------------------------------------------------------ tables */
 
+#define TICKS_PER_S XGO_TICK_HZ
 #define Q32(num, den) ((uint32_t)((4294967296ULL * (uint64_t)(num)) / (uint64_t)(den)))
-/* Phase advance per 2 ms tick for a cycle of ms milliseconds: 2^33 / ms. */
-#define RATE(ms) ((uint32_t)(8589934592ULL / (uint64_t)(ms)))
-/* Duty dn/dd: D * 2^32 / 1000 and D * 2^40 / 1000 (see fit_rate, tau). */
-#define KRATE(dn, dd) ((uint32_t)((4294967296ULL * (uint64_t)(dn)) / (1000ULL * (uint64_t)(dd))))
+/* Phase advance per tick for a cycle of ms milliseconds: 2^32 * 1000 /
+ * (ms * TICKS_PER_S) (2^33 / ms at 500 Hz). */
+#define RATE(ms) ((uint32_t)(4294967296000ULL / ((uint64_t)(ms) * TICKS_PER_S)))
+/* Duty D = dn/dd: D * 2^31 / TICKS_PER_S and D * 2^39 / TICKS_PER_S (see
+ * fit_rate, tau; D * 2^32 / 1000 and D * 2^40 / 1000 at 500 Hz). */
+#define KRATE(dn, dd) ((uint32_t)((2147483648ULL * (uint64_t)(dn)) / ((uint64_t)TICKS_PER_S * (dd))))
 #define KHALF(ms) ((uint32_t)(((uint64_t)(ms) << 22) / 1000u))
-#define KTAU(dn, dd) ((uint32_t)((1099511627776ULL * (uint64_t)(dn)) / (1000ULL * (uint64_t)(dd))))
+#define KTAU(dn, dd) ((uint32_t)((549755813888ULL * (uint64_t)(dn)) / ((uint64_t)TICKS_PER_S * (dd))))
 
 typedef struct gait_table_s {
     uint32_t swing;         /* swing fraction S of the cycle, Q32 */
     uint32_t inv_swing_q16; /* 1 / S, Q16 */
     uint32_t lift[XGO_LEG_COUNT]; /* lift-off phase per leg, Q32 */
-    uint32_t k_rate;        /* D * 2^32 / 1000 (D = 1 - S, the duty factor) */
-    uint32_t k_tau;         /* D * 2^40 / 1000 */
+    uint32_t k_rate;        /* D * 2^31 / TICKS_PER_S (D = 1 - S, the duty factor) */
+    uint32_t k_tau;         /* D * 2^39 / TICKS_PER_S */
     uint32_t rate[XGO_PACE_COUNT]; /* nominal cadence per pace */
     uint32_t rate_max;      /* cadence cap */
     uint32_t k_half;        /* shortest period (ms) * 2^22 / 1000, see half_time_q16 */
@@ -81,9 +85,9 @@ static const gait_table_t k_tables[XGO_GAIT_TYPE_COUNT] = {
 
 /* mdeg/s -> rad/s in Q24: pi / 180000 * 2^24 * 2^16 (applied with q = 16). */
 #define K_MDEG_TO_RAD_Q24_Q16 19190957
-/* um/s -> 1/256 um per tick: 256 / 500 * 2^31 (applied with q = 31). */
-#define K_UMS_TO_Q8_TICK_Q31 1099511628
-#define TICKS_PER_S 500u
+/* um/s -> 1/256 um per tick: 256 / TICKS_PER_S * 2^31, rounded (applied
+ * with q = 31). */
+#define K_UMS_TO_Q8_TICK_Q31 ((int32_t)((((uint64_t)256u << 31) + TICKS_PER_S / 2u) / TICKS_PER_S))
 /* Largest body turn per stance: 30 degrees = 0.5236 rad. K_TURN maps a yaw
  * rate in rad/s Q24 to (|w| / turn) * 2 in Q11 after >> 32:
  * 2 / 0.5236 * 2^(11 + 32 - 24). */
@@ -135,7 +139,7 @@ static uint32_t max_u(uint32_t a, uint32_t b)
 
 /* Cadence at which a foot moving at speed (um/s) covers twice the half
  * stride h (um) in one stance: D * speed / (2 h) cycles per second, as a
- * phase rate per tick: (speed / h) * D * 2^32 / 1000. speed < 2^21. */
+ * phase rate per tick: (speed / h) * D * 2^31 / TICKS_PER_S. speed < 2^21. */
 static uint32_t fit_rate(uint32_t speed, uint32_t h, uint32_t k_rate)
 {
     uint32_t q = (speed << 11) / h; /* speed / h in Q11 */
@@ -235,7 +239,7 @@ static int32_t reach_y(int32_t w_mdeg_s)
 
 /* End-of-stance bounds for one foot component: a foot at offset off (um)
  * from its stance point, moving at ground speed s (um/s) for r more phase
- * at the capped cadence, ends at off - s * r / k with k = 500 * rate_max.
+ * at the capped cadence, ends at off - s * r / k with k = TICKS_PER_S * rate_max.
  * It stays in [-reach, reach] (widened to include off, so that s = 0 always
  * fits) iff s * r lies in [lo, hi] computed here. */
 static void end_bounds(int32_t off, int32_t reach, int64_t k, int64_t *lo, int64_t *hi)
@@ -299,7 +303,8 @@ static int32_t yaw_q24(int32_t w_mdeg_s)
 }
 
 /* Half the time (s, Q16) a planted foot with r phase left stays down at the
- * capped cadence of table t: r / rate_max ticks of 2 ms, halved. */
+ * capped cadence of table t: r / rate_max ticks, halved (k_half does not
+ * depend on the tick rate). */
 static uint32_t half_time_q16(const gait_table_t *t, uint32_t r)
 {
     return (uint32_t)(((uint64_t)r * t->k_half) >> 39);

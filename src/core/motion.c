@@ -66,13 +66,11 @@ static void standing_joints(const xgo_motion_t *m, int32_t q[XGO_SERVO_COUNT])
     xgo_body_to_joints(m->profile, &m->stand, m->stance_um, (int32_t(*)[XGO_JOINT_COUNT])q);
 }
 
-void xgo_motion_init(xgo_motion_t *m, const xgo_profile_t *profile, uint8_t battery_pct,
-                     uint32_t tick_hz)
+void xgo_motion_init(xgo_motion_t *m, const xgo_profile_t *profile, uint8_t battery_pct)
 {
     int32_t q[XGO_SERVO_COUNT];
     memset(m, 0, sizeof *m);
     m->profile = profile;
-    m->tick_hz = tick_hz == 0 ? 1u : tick_hz;
     m->mode = XGO_MODE_WHOLE_UNIT;
     m->group_mode = XGO_MODE_WHOLE_UNIT;
     xgo_stance_feet(profile, m->stance_um);
@@ -278,7 +276,7 @@ static void handle_writes(xgo_motion_t *m, xgo_regs_t *r)
 static void advance_periodic(xgo_motion_t *m, unsigned axis, uint8_t period_byte)
 {
     static const xgo_range_t period_ms = {XGO_PERIOD_MIN_MS, XGO_PERIOD_MAX_MS};
-    const uint32_t ticks = (uint32_t)xgo_byte_to_range(&period_ms, period_byte) * m->tick_hz / 1000u;
+    const uint32_t ticks = (uint32_t)xgo_byte_to_range(&period_ms, period_byte) * XGO_TICK_HZ / 1000u;
     /* One turn of phase per period: 2^32 / ticks per tick. */
     m->periodic_phase[axis] += (xgo_bam_t)(((uint64_t)1 << 32) / (ticks == 0 ? 1u : ticks));
 }
@@ -441,11 +439,11 @@ static void leg_targets(xgo_motion_t *m, const xgo_regs_t *r, int32_t q[XGO_SERV
     m->pose = m->stand;
 }
 
-static int32_t servo_mode_step(const xgo_motion_t *m, const xgo_regs_t *r)
+static int32_t servo_mode_step(const xgo_regs_t *r)
 {
     static const xgo_range_t speed = {XGO_SERVO_SPEED_MIN_MDEG_S, XGO_SERVO_SPEED_MAX_MDEG_S};
     const int32_t per_s = xgo_byte_to_range(&speed, xgo_regs_get(r, XGO_REG_SERVO_SPEED));
-    const int32_t step = per_s / (int32_t)m->tick_hz;
+    const int32_t step = per_s / (int32_t)XGO_TICK_HZ;
     return step < 1 ? 1 : step;
 }
 
@@ -487,7 +485,7 @@ void xgo_motion_tick(xgo_motion_t *m, xgo_regs_t *r)
         break;
     case XGO_MODE_SERVO:
         memcpy(q, m->servo_cmd_mdeg, sizeof q);
-        step = servo_mode_step(m, r);
+        step = servo_mode_step(r);
         m->pose = m->stand;
         break;
     default: /* debug, calibration: hold */
@@ -496,8 +494,7 @@ void xgo_motion_tick(xgo_motion_t *m, xgo_regs_t *r)
     }
     xgo_servos_set_targets(&m->servos, q);
     xgo_servos_tick(&m->servos, step);
-    xgo_imu_tick(&m->imu, m->pose.roll_mdeg, m->pose.pitch_mdeg, m->pose.yaw_mdeg, yaw_rate,
-                 m->tick_hz);
+    xgo_imu_tick(&m->imu, m->pose.roll_mdeg, m->pose.pitch_mdeg, m->pose.yaw_mdeg, yaw_rate);
     xgo_battery_tick(&m->battery, busy);
     if (m->mode == XGO_MODE_ACTION && m->action_id == 0) {
         m->mode = m->group_mode;

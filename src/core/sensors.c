@@ -67,17 +67,18 @@ static int32_t wrap_mdeg(int64_t a)
     return (int32_t)a;
 }
 
+/* yaw_acc wraps at one turn: 360 degrees in mdeg * XGO_TICK_HZ. */
+#define YAW_TURN ((int64_t)360000 * (int64_t)XGO_TICK_HZ)
+
 void xgo_imu_tick(xgo_imu_t *imu, int32_t body_roll_mdeg, int32_t body_pitch_mdeg,
-                  int32_t body_yaw_mdeg, int32_t yaw_rate_mdeg_s, uint32_t tick_hz)
+                  int32_t body_yaw_mdeg, int32_t yaw_rate_mdeg_s)
 {
-    const int64_t turn = (int64_t)360000 * (int64_t)(tick_hz == 0 ? 1u : tick_hz);
+    const int64_t turn = YAW_TURN;
+    const uint32_t tick_hz = XGO_TICK_HZ;
     int64_t acc;
-    if (tick_hz == 0) {
-        tick_hz = 1;
-    }
-    /* yaw_acc counts mdeg * tick_hz, so adding the rate each tick integrates
-     * exactly; it wraps at one turn and stays well inside int32 for rates
-     * up to thousands of degrees per second. */
+    /* yaw_acc counts mdeg * XGO_TICK_HZ, so adding the rate each tick
+     * integrates exactly; it wraps at one turn and stays well inside int32
+     * for rates up to thousands of degrees per second. */
     if (turn < ((int64_t)1 << 29) && yaw_rate_mdeg_s < turn && yaw_rate_mdeg_s > -turn &&
         imu->yaw_acc < turn && imu->yaw_acc > -turn) {
         /* 32-bit (tick rates up to 1491 Hz, rates below a turn per tick, the
