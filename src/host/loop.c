@@ -15,12 +15,18 @@
  * output queue, and the master is read only when all earlier input has been
  * fed. A host that writes requests but never reads replies therefore fills
  * the pty's buffers and blocks itself; xgo-emu keeps ticking.
+ *
+ * Held-back input is not silence: the parser's clock (wire_us) stands still
+ * while input waits for us, in `in` or unread in the pty, so its silence
+ * timeout fires only when the line really was quiet that long, and bytes are
+ * stamped when they are fed, not when they were read.
  */
 #include "loop.h"
 
 #include <errno.h>
 #include <poll.h>
 #include <string.h>
+#include <sys/ioctl.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -56,6 +62,7 @@ void xgo_host_loop_init(xgo_host_loop_t *l, xgo_board_t *board, const xgo_host_p
     /* Nobody has the slave open yet; the first probe finds out. */
     l->host_gone = 1;
     l->next_tick_us = xgo_host_clock_us() + XGO_HOST_TICK_US;
+    l->wire_seen_us = l->next_tick_us - XGO_HOST_TICK_US;
 }
 
 void xgo_host_loop_set_state(xgo_host_loop_t *l, xgo_host_state_t *state)
@@ -99,6 +106,37 @@ static void xgo_host_loop_run_ticks(xgo_host_loop_t *l, uint64_t now_us)
     }
     l->next_tick_us += XGO_HOST_TICK_US;
     l->counters.ticks += due;
+}
+
+/* Is input waiting for us: read but not fed, or unread in the pty? */
+static int xgo_host_loop_input_waiting(const xgo_host_loop_t *l)
+{
+    int unread = 0;
+    if (l->in_fed < l->in_len) {
+        return 1;
+    }
+    if (ioctl(l->pty->master_fd, FIONREAD, &unread) != 0) {
+        return 0;
+    }
+    return unread > 0;
+}
+
+/* Brings the parser's clock up to now_us. Time in which input was found
+ * waiting does not count: those bytes (or some of them) were on the line
+ * during it, we only had not taken them yet. */
+static void xgo_host_loop_advance_wire(xgo_host_loop_t *l, uint64_t now_us)
+{
+    if (now_us > l->wire_seen_us && !xgo_host_loop_input_waiting(l)) {
+        l->wire_us += now_us - l->wire_seen_us;
+    }
+    if (now_us > l->wire_seen_us) {
+        l->wire_seen_us = now_us;
+    }
+}
+
+static uint32_t xgo_host_loop_wire_ms(const xgo_host_loop_t *l)
+{
+    return (uint32_t)(l->wire_us / 1000u);
 }
 
 /* Replies for a host that has gone are dropped, as on a real wire. */
@@ -165,7 +203,7 @@ static void xgo_host_loop_feed(xgo_host_loop_t *l, uint64_t now_us)
             chunk = l->in_len - l->in_fed;
         }
         xgo_host_loop_set_trace_time(l, now_us);
-        xgo_board_receive(l->board, l->in + l->in_fed, chunk, l->in_rx_ms);
+        xgo_board_receive(l->board, l->in + l->in_fed, chunk, xgo_host_loop_wire_ms(l));
         l->in_fed += chunk;
         if (l->baud_pacing) {
             ready_us = l->in_wire_start_us +
@@ -206,7 +244,6 @@ static void xgo_host_loop_read(xgo_host_loop_t *l, uint64_t now_us)
         l->in_orphaned = l->host_gone;
         l->in_len = (size_t)n;
         l->in_fed = 0;
-        l->in_rx_ms = xgo_host_clock_ms32(now_us);
         l->counters.bytes_in += (uint64_t)n;
         if (l->baud_pacing) {
             /* A real UART would still be receiving: the bytes arrive one
@@ -316,12 +353,13 @@ int xgo_host_loop_run(xgo_host_loop_t *l)
         if (l->host_gone) {
             xgo_host_loop_probe_host(l, now);
         }
+        xgo_host_loop_advance_wire(l, now);
         xgo_host_loop_feed(l, now);
-        if (l->in_len == 0) {
-            /* Only with no input still waiting: bytes held back by us are
-             * not silence on the wire. */
+        if (!xgo_host_loop_input_waiting(l)) {
+            /* Only with no input waiting: bytes held back by us, or still
+             * in the pty, are not silence on the wire. */
             xgo_host_loop_set_trace_time(l, now);
-            xgo_board_poll(l->board, xgo_host_clock_ms32(now));
+            xgo_board_poll(l->board, xgo_host_loop_wire_ms(l));
         }
         xgo_host_loop_take_replies(l, now, now);
         if (!l->host_gone) {

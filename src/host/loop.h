@@ -41,7 +41,6 @@ typedef struct xgo_host_loop_s {
     uint8_t in[XGO_HOST_INBUF_BYTES]; /* read from the host, not yet fed */
     size_t in_len;
     size_t in_fed;
-    uint32_t in_rx_ms;          /* when `in` was read */
     int in_orphaned;            /* `in` was read after its host hung up */
     uint64_t in_wire_start_us;  /* pacing: when in[0] started arriving on the wire */
     uint32_t in_bytes_per_s;    /* pacing: line speed while `in` arrived */
@@ -51,6 +50,12 @@ typedef struct xgo_host_loop_s {
     uint64_t tx_wire_free_us;   /* pacing: when our last queued byte leaves */
     int out_blocked;            /* last write hit EAGAIN: wait for POLLOUT */
     int host_gone;              /* no host has the slave open */
+
+    /* The parser's clock: real time minus the time input was waiting (in
+     * `in` or unread in the pty). Its silence timeout must measure silence
+     * on the line, not our own delays (a full output queue, a stall). */
+    uint64_t wire_us;
+    uint64_t wire_seen_us;      /* real time wire_us was last brought up to */
 
     uint64_t next_tick_us;
     xgo_host_counters_t counters;
