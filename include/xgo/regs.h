@@ -124,20 +124,29 @@ enum xgo_reg_addr_e {
 #define XGO_BT_NAME_LEN 10u
 
 /* Diagnostic block at 0xD0: XGO_DIAG_COUNT uint32 little-endian counters, in
- * this order (docs/registers.md). Read-only; counters wrap at 2^32. */
+ * this order (docs/registers.md). Read-only; counters wrap at 2^32. One row
+ * per counter, the only list of them (enum, names and the board's mapping are
+ * generated from it; new counters are appended, the order is the wire layout):
+ *   X(ID, name, where the board keeps it: a member of xgo_board_t) */
+#define XGO_DIAG_LIST(X)                                                               \
+    X(FRAMES_OK, frames_ok, parser.stats.frames_ok)                                    \
+    X(BAD_CHECKSUM, bad_checksum, parser.stats.bad_checksum)                           \
+    X(BAD_TAIL, bad_tail, parser.stats.bad_tail)                                       \
+    X(BAD_LENGTH, bad_length, parser.stats.bad_length)                                 \
+    X(BAD_TYPE, bad_type, parser.stats.bad_type)                                       \
+    X(BAD_RANGE, bad_range, parser.stats.bad_range)                                    \
+    X(BYTES_DISCARDED, bytes_discarded, parser.stats.bytes_discarded)                  \
+    X(TIMEOUTS, timeouts, parser.stats.timeouts)                                       \
+    X(REJECTED_READ_ONLY, rejected_read_only, regs.stats.rejected_read_only)           \
+    X(REJECTED_VALUE, rejected_value, regs.stats.rejected_value)                       \
+    X(IGNORED_UNMAPPED, ignored_unmapped, regs.stats.ignored_unmapped)                 \
+    X(TX_OVERFLOW, tx_overflow, tx_overflows)
+
+/* XGO_DIAG_FRAMES_OK == 0, ... */
 typedef enum xgo_diag_e {
-    XGO_DIAG_FRAMES_OK = 0,
-    XGO_DIAG_BAD_CHECKSUM,
-    XGO_DIAG_BAD_TAIL,
-    XGO_DIAG_BAD_LENGTH,
-    XGO_DIAG_BAD_TYPE,
-    XGO_DIAG_BAD_RANGE,
-    XGO_DIAG_BYTES_DISCARDED,
-    XGO_DIAG_TIMEOUTS,
-    XGO_DIAG_REJECTED_READ_ONLY,
-    XGO_DIAG_REJECTED_VALUE,
-    XGO_DIAG_IGNORED_UNMAPPED,
-    XGO_DIAG_TX_OVERFLOW,
+#define XGO_DIAG_ENUM_(id, name, member) XGO_DIAG_##id,
+    XGO_DIAG_LIST(XGO_DIAG_ENUM_)
+#undef XGO_DIAG_ENUM_
     XGO_DIAG_COUNT
 } xgo_diag_t;
 

@@ -11,9 +11,9 @@ static const char k_firmware_mini[] = "M-EMU-0.1";
 static const char k_firmware_lite[] = "L-EMU-0.1";
 
 static const char *const k_diag_names[XGO_DIAG_COUNT] = {
-    "frames_ok",          "bad_checksum",   "bad_tail",         "bad_length",
-    "bad_type",           "bad_range",      "bytes_discarded",  "timeouts",
-    "rejected_read_only", "rejected_value", "ignored_unmapped", "tx_overflow",
+#define DIAG_NAME_(id, name, member) #name,
+    XGO_DIAG_LIST(DIAG_NAME_)
+#undef DIAG_NAME_
 };
 
 const char *xgo_diag_name(xgo_diag_t which)
@@ -78,20 +78,9 @@ size_t xgo_board_tx_pending(const xgo_board_t *b)
 
 void xgo_board_counters(const xgo_board_t *b, uint32_t out[XGO_DIAG_COUNT])
 {
-    const xgo_parser_stats_t *ps = &b->parser.stats;
-    const xgo_regs_stats_t *rs = &b->regs.stats;
-    out[XGO_DIAG_FRAMES_OK] = ps->frames_ok;
-    out[XGO_DIAG_BAD_CHECKSUM] = ps->bad_checksum;
-    out[XGO_DIAG_BAD_TAIL] = ps->bad_tail;
-    out[XGO_DIAG_BAD_LENGTH] = ps->bad_length;
-    out[XGO_DIAG_BAD_TYPE] = ps->bad_type;
-    out[XGO_DIAG_BAD_RANGE] = ps->bad_range;
-    out[XGO_DIAG_BYTES_DISCARDED] = ps->bytes_discarded;
-    out[XGO_DIAG_TIMEOUTS] = ps->timeouts;
-    out[XGO_DIAG_REJECTED_READ_ONLY] = rs->rejected_read_only;
-    out[XGO_DIAG_REJECTED_VALUE] = rs->rejected_value;
-    out[XGO_DIAG_IGNORED_UNMAPPED] = rs->ignored_unmapped;
-    out[XGO_DIAG_TX_OVERFLOW] = b->tx_overflows;
+#define DIAG_READ_(id, name, member) out[XGO_DIAG_##id] = b->member;
+    XGO_DIAG_LIST(DIAG_READ_)
+#undef DIAG_READ_
 }
 
 static uint8_t count_unmapped(const xgo_regs_t *r, const xgo_frame_t *f)
