@@ -19,6 +19,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/types.h>
 #include <sys/wait.h>
@@ -421,17 +422,58 @@ static void test_failed_save_leaves_the_old_file(void)
 {
     xgo_board_nv_t nv = nv_example();
     char before[512], after[512], tmp[160], why[300] = "";
+    struct rlimit saved, small;
+    int rc;
     TEST_ASSERT_EQUAL_INT(0, xgo_host_state_save(g_state, &nv, why, sizeof why));
     TEST_ASSERT_TRUE(read_file(g_state, before, sizeof before) > 0);
-    /* Our temporary name is taken by a directory: the write fails. */
-    snprintf(tmp, sizeof tmp, "%s.tmp.%ld", g_state, (long)getpid());
-    TEST_ASSERT_EQUAL_INT(0, mkdir(tmp, 0700));
+    /* No file may grow past 16 bytes (works for root too, unlike a
+     * read-only directory): the write of the temporary file fails. */
+    TEST_ASSERT_EQUAL_INT(0, getrlimit(RLIMIT_FSIZE, &saved));
+    small = saved;
+    small.rlim_cur = 16;
+    signal(SIGXFSZ, SIG_IGN);
+    TEST_ASSERT_EQUAL_INT(0, setrlimit(RLIMIT_FSIZE, &small));
     memcpy(nv.bt_name, "New\0\0\0\0\0\0\0", 10);
-    TEST_ASSERT_EQUAL_INT(-1, xgo_host_state_save(g_state, &nv, why, sizeof why));
+    rc = xgo_host_state_save(g_state, &nv, why, sizeof why);
+    TEST_ASSERT_EQUAL_INT(0, setrlimit(RLIMIT_FSIZE, &saved));
+    signal(SIGXFSZ, SIG_DFL);
+    TEST_ASSERT_EQUAL_INT(-1, rc);
     TEST_ASSERT_NOT_NULL_MESSAGE(strstr(why, "cannot write"), why);
     TEST_ASSERT_TRUE(read_file(g_state, after, sizeof after) > 0);
     TEST_ASSERT_EQUAL_STRING(before, after);
-    rmdir(tmp);
+    TEST_ASSERT_EQUAL_INT(0, count_tmp_files(tmp, sizeof tmp)); /* nothing left behind */
+}
+
+/* Nothing at the old, predictable temporary name (FILE.tmp.<pid>) is ever
+ * opened or followed: a directory, a FIFO, a symlink to a victim file. And a
+ * symlink at FILE is replaced by our own file; its target keeps its data and
+ * mode. */
+static void test_save_never_opens_or_follows_what_is_planted(void)
+{
+    xgo_board_nv_t nv = nv_example();
+    xgo_board_nv_t back;
+    char plant[160], victim[160], text[64], why[300] = "";
+    struct stat st;
+    snprintf(victim, sizeof victim, "%s/victim", g_dir);
+    write_file(victim, "precious\n");
+    TEST_ASSERT_EQUAL_INT(0, chmod(victim, 0644));
+    snprintf(plant, sizeof plant, "%s.tmp.%ld", g_state, (long)getpid());
+    TEST_ASSERT_EQUAL_INT(0, symlink(victim, plant));
+    TEST_ASSERT_EQUAL_INT(0, symlink(victim, g_state));
+    TEST_ASSERT_EQUAL_INT_MESSAGE(0, xgo_host_state_save(g_state, &nv, why, sizeof why), why);
+    TEST_ASSERT_EQUAL_INT(0, lstat(g_state, &st));
+    TEST_ASSERT_TRUE(S_ISREG(st.st_mode));
+    TEST_ASSERT_EQUAL_INT(0600, st.st_mode & 0777); /* not the link target's 0644 */
+    load_state_file(&back);
+    assert_nv_equal(&nv, &back);
+    TEST_ASSERT_TRUE(read_file(victim, text, sizeof text) > 0);
+    TEST_ASSERT_EQUAL_STRING("precious\n", text);
+    TEST_ASSERT_EQUAL_INT(0, lstat(plant, &st));
+    TEST_ASSERT_TRUE(S_ISLNK(st.st_mode));
+    TEST_ASSERT_EQUAL_INT(0, unlink(plant));
+    TEST_ASSERT_EQUAL_INT(0, mkdir(plant, 0700)); /* the old way to make a save fail */
+    TEST_ASSERT_EQUAL_INT_MESSAGE(0, xgo_host_state_save(g_state, &nv, why, sizeof why), why);
+    TEST_ASSERT_EQUAL_INT(0, rmdir(plant));
 }
 
 /* Leftovers of killed processes go; a live process's file and names that
@@ -454,8 +496,12 @@ static void test_stale_temporary_files_are_removed(void)
     write_file(path, "not ours");
     snprintf(path, sizeof path, "%s/other.tmp.%ld", g_dir, (long)dead);
     write_file(path, "not ours either");
-    TEST_ASSERT_EQUAL_INT(1, xgo_host_state_remove_stale(g_state));
-    TEST_ASSERT_EQUAL_INT(2, count_tmp_files(tmp, sizeof tmp));
+    snprintf(path, sizeof path, "%s.tmp.%ld.a1B2c3", g_state, (long)dead); /* today's name */
+    write_file(path, "half a file");
+    snprintf(path, sizeof path, "%s.tmp.%ld.d4E5f6", g_state, (long)dead);
+    TEST_ASSERT_EQUAL_INT(0, mkfifo(path, 0600)); /* no save of ours leaves a FIFO */
+    TEST_ASSERT_EQUAL_INT(2, xgo_host_state_remove_stale(g_state));
+    TEST_ASSERT_EQUAL_INT(3, count_tmp_files(tmp, sizeof tmp));
     TEST_ASSERT_EQUAL_INT(0, xgo_host_state_remove_stale(g_state));
 }
 
@@ -507,6 +553,69 @@ static void test_name_and_zero_offsets_survive_a_restart(void)
     TEST_ASSERT_EQUAL_MEMORY("Rex-02\0\0\0", second.bt_name, XGO_BT_NAME_LEN);
     TEST_ASSERT_EQUAL_MEMORY(first.zero_offset_mdeg, second.zero_offset_mdeg,
                              sizeof first.zero_offset_mdeg);
+}
+
+/* Another local user who can write the directory plants something at the
+ * temporary name the running emulator's saves used to take (FILE.tmp.<pid>,
+ * predictable); the save that follows a rename over the wire must neither
+ * hang on it nor adopt it. */
+
+/* A FIFO at the temporary name: opening it for writing would block until
+ * someone reads it, freezing the emulator at its next save. */
+static void test_planted_fifo_at_the_temporary_name_is_not_used(void)
+{
+    char plant[160];
+    uint8_t back[XGO_BT_NAME_LEN];
+    xgo_board_nv_t nv;
+    struct stat st;
+    emu_start_with_state(NULL, NULL); /* creates the file, saved before serving */
+    snprintf(plant, sizeof plant, "%s.tmp.%ld", g_state, (long)g_emu.pid);
+    TEST_ASSERT_EQUAL_INT(0, mkfifo(plant, 0666));
+    g_port = port_open();
+    write_regs(g_port, 0x13, "Fifo", 4); /* a change: saved at the next tick */
+    xgo_test_sleep_us(50000);
+    read_regs(g_port, 0x13, XGO_BT_NAME_LEN, back); /* still serving */
+    TEST_ASSERT_EQUAL_MEMORY("Fifo\0\0\0\0\0", back, XGO_BT_NAME_LEN);
+    close(g_port);
+    g_port = -1;
+    emu_stop();
+    load_state_file(&nv);
+    TEST_ASSERT_EQUAL_MEMORY("Fifo\0\0\0\0\0", nv.bt_name, XGO_BT_NAME_LEN);
+    TEST_ASSERT_EQUAL_INT(0, lstat(plant, &st));
+    TEST_ASSERT_TRUE_MESSAGE(S_ISFIFO(st.st_mode), "the planted FIFO was replaced");
+}
+
+/* A file of another user's at the temporary name, writable by us: writing
+ * into it and renaming it would make their file our state file (they could
+ * edit it at will afterwards). The save must create its own file. */
+static void test_planted_file_at_the_temporary_name_is_not_adopted(void)
+{
+    char plant[160];
+    char text[256];
+    xgo_board_nv_t nv;
+    struct stat planted, saved;
+    emu_start_with_state(NULL, NULL);
+    snprintf(plant, sizeof plant, "%s.tmp.%ld", g_state, (long)g_emu.pid);
+    write_file(plant, "theirs\n");
+    TEST_ASSERT_EQUAL_INT(0, chmod(plant, 0666));
+    if (geteuid() == 0) {
+        TEST_ASSERT_EQUAL_INT(0, chown(plant, 65534, 65534)); /* nobody's */
+    }
+    TEST_ASSERT_EQUAL_INT(0, stat(plant, &planted));
+    g_port = port_open();
+    write_regs(g_port, 0x13, "Mine", 4);
+    xgo_test_sleep_us(50000);
+    close(g_port);
+    g_port = -1;
+    emu_stop();
+    load_state_file(&nv);
+    TEST_ASSERT_EQUAL_MEMORY("Mine\0\0\0\0\0", nv.bt_name, XGO_BT_NAME_LEN);
+    TEST_ASSERT_EQUAL_INT(0, lstat(g_state, &saved));
+    TEST_ASSERT_TRUE_MESSAGE(saved.st_ino != planted.st_ino, "the planted file became the state file");
+    TEST_ASSERT_EQUAL_UINT(geteuid(), saved.st_uid);
+    TEST_ASSERT_EQUAL_INT(0600, saved.st_mode & 0777); /* private unless its owner said otherwise */
+    TEST_ASSERT_TRUE(read_file(plant, text, sizeof text) > 0);
+    TEST_ASSERT_EQUAL_STRING("theirs\n", text);
 }
 
 /* Is name (a NUL-padded 10-byte field) in the list of names? */
@@ -573,7 +682,7 @@ static void test_state_file_survives_kill_at_random_points(void)
         g_port = port_open();
         n = 1 + rename_burst(round, delay_us, names + 1, 1023);
         TEST_ASSERT_EQUAL_INT(0, kill(g_emu.pid, SIGKILL));
-        snprintf(expect_left, sizeof expect_left, "state.tmp.%ld", (long)g_emu.pid);
+        snprintf(expect_left, sizeof expect_left, "state.tmp.%ld.", (long)g_emu.pid);
         TEST_ASSERT_TRUE(WIFSIGNALED(emu_wait()));
         close(g_port);
         g_port = -1;
@@ -585,8 +694,10 @@ static void test_state_file_survives_kill_at_random_points(void)
         switch (count_tmp_files(left, sizeof left)) {
         case 0:
             break;
-        case 1:
-            TEST_ASSERT_EQUAL_STRING(expect_left, left);
+        case 1: /* the killed process's own: state.tmp.<pid>.XXXXXX */
+            TEST_ASSERT_EQUAL_INT_MESSAGE(0, strncmp(expect_left, left, strlen(expect_left)),
+                                          left);
+            TEST_ASSERT_EQUAL_UINT(strlen(expect_left) + 6, strlen(left));
             torn++;
             break;
         default:
@@ -715,9 +826,12 @@ int main(void)
     RUN_TEST(test_layout_errors_are_refused_with_a_reason);
     RUN_TEST(test_save_load_missing_and_permissions);
     RUN_TEST(test_failed_save_leaves_the_old_file);
+    RUN_TEST(test_save_never_opens_or_follows_what_is_planted);
     RUN_TEST(test_stale_temporary_files_are_removed);
     RUN_TEST(test_name_and_zero_offsets_survive_a_restart);
     RUN_TEST(test_state_file_survives_kill_at_random_points);
+    RUN_TEST(test_planted_fifo_at_the_temporary_name_is_not_used);
+    RUN_TEST(test_planted_file_at_the_temporary_name_is_not_adopted);
     RUN_TEST(test_bad_state_file_refuses_to_start);
     RUN_TEST(test_ground_tilt_misuse_exits_2);
     RUN_TEST(test_ground_tilt_and_self_levelling);

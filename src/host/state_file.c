@@ -16,6 +16,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <signal.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <sys/types.h>
@@ -337,7 +338,7 @@ static int xgo_host_sync_dir(const char *path)
         errno = ENAMETOOLONG;
         return -1;
     }
-    fd = open(dir, O_RDONLY | O_CLOEXEC);
+    fd = open(dir, O_RDONLY | O_CLOEXEC | O_DIRECTORY);
     if (fd < 0) {
         return -1;
     }
@@ -349,18 +350,34 @@ static int xgo_host_sync_dir(const char *path)
     return rc;
 }
 
-/* Writes, flushes and closes the temporary file. A replaced file keeps its
- * permissions (best effort: a failure leaves the umask's). */
-static int xgo_host_write_tmp(const char *tmp, const char *path, const char *text, size_t len)
+/* Creates the temporary file: a fresh name (tmp: "PATH.tmp.<pid>.XXXXXX",
+ * filled in) that nobody else can have prepared, mode 0600. mkstemp opens
+ * with O_CREAT | O_EXCL, so whatever sits at a name it tries (a FIFO, a
+ * symlink, another user's file) is never opened: it tries another name. */
+static int xgo_host_create_tmp(char *tmp)
 {
-    struct stat st;
-    int fd = open(tmp, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC | O_NOFOLLOW, 0666);
-    int saved;
+    int fd = mkstemp(tmp);
+    int fl;
     if (fd < 0) {
         return -1;
     }
-    if (stat(path, &st) == 0) {
-        (void)fchmod(fd, st.st_mode & 07777);
+    fl = fcntl(fd, F_GETFD);
+    if (fl >= 0) {
+        (void)fcntl(fd, F_SETFD, fl | FD_CLOEXEC);
+    }
+    return fd;
+}
+
+/* Writes, flushes and closes the temporary file. A replaced regular file
+ * keeps its permission bits (best effort); a new file, or one replacing a
+ * symlink or anything else, stays 0600. lstat: a symlink's target is not
+ * ours to copy from. */
+static int xgo_host_write_tmp(int fd, const char *path, const char *text, size_t len)
+{
+    struct stat st;
+    int saved;
+    if (lstat(path, &st) == 0 && S_ISREG(st.st_mode)) {
+        (void)fchmod(fd, st.st_mode & 0777);
     }
     if (xgo_host_write_all(fd, text, len) != 0 || fsync(fd) != 0) {
         saved = errno;
@@ -376,12 +393,19 @@ int xgo_host_state_save(const char *path, const xgo_board_nv_t *nv, char *err, s
     char text[XGO_HOST_STATE_MAX_BYTES];
     char tmp[XGO_HOST_STATE_PATH_MAX];
     size_t len = xgo_host_state_format(nv, text, sizeof text);
-    int n = snprintf(tmp, sizeof tmp, "%s" XGO_HOST_STATE_TMP_INFIX "%ld", path, (long)getpid());
+    int n = snprintf(tmp, sizeof tmp, "%s" XGO_HOST_STATE_TMP_INFIX "%ld.XXXXXX", path,
+                     (long)getpid());
+    int fd;
     if (len == 0 || n < 0 || (size_t)n >= sizeof tmp) {
         snprintf(err, err_size, "path too long");
         return -1;
     }
-    if (xgo_host_write_tmp(tmp, path, text, len) != 0) {
+    fd = xgo_host_create_tmp(tmp);
+    if (fd < 0) {
+        snprintf(err, err_size, "cannot create a temporary file next to it: %s", strerror(errno));
+        return -1;
+    }
+    if (xgo_host_write_tmp(fd, path, text, len) != 0) {
         snprintf(err, err_size, "cannot write %s: %s", tmp, strerror(errno));
         (void)unlink(tmp);
         return -1;
@@ -398,25 +422,26 @@ int xgo_host_state_save(const char *path, const xgo_board_nv_t *nv, char *err, s
     return 0;
 }
 
-/* Is name "<base>.tmp.<pid>"? */
+/* Is name "<base>.tmp.<pid>.XXXXXX" (or "<base>.tmp.<pid>", as earlier
+ * versions named it)? */
 static int xgo_host_tmp_pid(const char *name, const char *base, long *pid)
 {
     size_t base_len = strlen(base);
-    const char *digits;
+    const char *p;
     long v = 0;
+    unsigned digits = 0;
     if (strncmp(name, base, base_len) != 0 ||
         strncmp(name + base_len, XGO_HOST_STATE_TMP_INFIX, 5) != 0) {
         return 0;
     }
-    digits = name + base_len + 5;
-    if (*digits == '\0' || strlen(digits) > 9) {
-        return 0;
-    }
-    for (; *digits != '\0'; digits++) {
-        if (*digits < '0' || *digits > '9') {
+    for (p = name + base_len + 5; *p >= '0' && *p <= '9'; p++) {
+        if (++digits > 9) {
             return 0;
         }
-        v = v * 10 + (*digits - '0');
+        v = v * 10 + (*p - '0');
+    }
+    if (digits == 0 || (*p != '\0' && (*p != '.' || strlen(p + 1) != 6))) {
+        return 0;
     }
     *pid = v;
     return v > 0;
@@ -428,6 +453,7 @@ int xgo_host_state_remove_stale(const char *path)
     char full[XGO_HOST_STATE_PATH_MAX];
     const char *base = xgo_host_split_path(path, dir, sizeof dir);
     struct dirent *e;
+    struct stat st;
     DIR *d;
     int removed = 0;
     if (base == NULL || *base == '\0' || (d = opendir(dir)) == NULL) {
@@ -445,7 +471,9 @@ int xgo_host_state_remove_stale(const char *path)
             continue;
         }
         n = snprintf(full, sizeof full, "%s/%s", dir, e->d_name);
-        if (n > 0 && (size_t)n < sizeof full && unlink(full) == 0) {
+        /* Only what a save of ours can have left: a regular file we own. */
+        if (n > 0 && (size_t)n < sizeof full && lstat(full, &st) == 0 && S_ISREG(st.st_mode) &&
+            st.st_uid == geteuid() && unlink(full) == 0) {
             removed++;
         }
     }

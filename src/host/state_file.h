@@ -13,9 +13,10 @@
  * The last line is the CRC-32 (zlib's) of every byte before it, so a file
  * that is damaged or cut short is recognised, never half-applied.
  *
- * Saving is atomic: the new text goes to FILE.tmp.<pid> in the same
- * directory, is fsync'ed, renamed over FILE, and the directory is fsync'ed.
- * A crash at any moment leaves the old file or the new one.
+ * Saving is atomic: the new text goes to a fresh FILE.tmp.<pid>.XXXXXX in the
+ * same directory (created exclusively, mode 0600: nothing planted there is
+ * ever opened), is fsync'ed, renamed over FILE, and the directory is
+ * fsync'ed. A crash at any moment leaves the old file or the new one.
  */
 #ifndef XGO_HOST_STATE_FILE_H
 #define XGO_HOST_STATE_FILE_H
@@ -57,8 +58,9 @@ xgo_host_state_load_t xgo_host_state_load(const char *path, xgo_board_nv_t *nv, 
  * one-line reason in err (the old file, if any, is then untouched). */
 int xgo_host_state_save(const char *path, const xgo_board_nv_t *nv, char *err, size_t err_size);
 
-/* Removes PATH.tmp.<pid> files left behind by processes that no longer exist
- * (killed in the middle of a save). Returns how many were removed. */
+/* Removes PATH.tmp.<pid>.XXXXXX (and older PATH.tmp.<pid>) files left
+ * behind by processes that no longer exist (killed in the middle of a save):
+ * only regular files owned by us. Returns how many were removed. */
 int xgo_host_state_remove_stale(const char *path);
 
 /* --- Keeping a running board's data saved ------------------------------ */
