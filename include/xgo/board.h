@@ -45,8 +45,18 @@ typedef enum xgo_trace_kind_e {
     XGO_TRACE_DROP  /* input was dropped: see reason, raw bytes / frame */
 } xgo_trace_kind_t;
 
+/* Who sent a write or request: the serial line, or a host-side program that
+ * enters the same register-write path through xgo_board_write() (the live
+ * view's page, a script through it, ...). Only for tracing. */
+typedef enum xgo_source_e {
+    XGO_SOURCE_WIRE = 0, /* bytes through xgo_board_receive() */
+    XGO_SOURCE_VIEW = 1, /* the live view (xgo-emu --view) */
+    XGO_SOURCE_CLI = 2   /* another local tool */
+} xgo_source_t;
+
 typedef struct xgo_trace_event_s {
     xgo_trace_kind_t kind;
+    uint8_t source;            /* xgo_source_t of the frame (WIRE for parser drops) */
     xgo_drop_reason_t reason;  /* XGO_DROP_NONE unless kind == XGO_TRACE_DROP */
     const xgo_frame_t *frame;  /* the frame, when one was parsed (else NULL) */
     const uint8_t *raw;        /* for parser drops: the rejected bytes */
@@ -65,6 +75,7 @@ typedef struct xgo_board_s {
     uint16_t tx_len;
     uint32_t tx_overflows;
     uint32_t ticks;
+    uint8_t source;                 /* xgo_source_t of the frame being handled */
     xgo_motion_t motion;
     xgo_trace_fn trace;
     void *trace_ctx;
@@ -95,9 +106,58 @@ size_t xgo_board_tx_pending(const xgo_board_t *b);
 /* Advance one control period (1 / XGO_TICK_HZ s). */
 void xgo_board_tick(xgo_board_t *b);
 
-/* The ground under the robot tilts by roll/pitch (an emulator input: the
- * IMU reads the tilt; self-stabilisation, 0x61 = 1, levels the body). */
+/* A register write from a host-side program (not the wire): exactly the
+ * path of a write frame - validated whole, applied or rejected and counted,
+ * traced with `source` - so a second controller (the live view) is no side
+ * door. Frames through here do not count as frames_ok (the parser never saw
+ * them). Returns XGO_DROP_NONE, or why nothing was written (n == 0,
+ * n > XGO_FRAME_MAX_DATA or addr + n > 256 give XGO_DROP_BAD_RANGE, counted
+ * as bad_range). */
+xgo_drop_reason_t xgo_board_write(xgo_board_t *b, uint8_t source, uint8_t addr,
+                                  const uint8_t *data, size_t n);
+
+/* ---- Observers: what the board is doing, read-only, in physical units.
+ * Frames: body frame = body axes, origin at the body centre, x forward,
+ * y left, z up. Angles in millidegrees, lengths in micrometres. */
+
+/* Board time: control ticks since init, in ms. */
+uint32_t xgo_board_time_ms(const xgo_board_t *b);
+/* Register 0x00 (xgo_mode_t) and the running action (0x3E, 0 = none). */
+uint8_t xgo_board_mode(const xgo_board_t *b);
+uint8_t xgo_board_action(const xgo_board_t *b);
+/* The twelve joints where they are now (register order 0x50..0x5B). */
+void xgo_board_joints_mdeg(const xgo_board_t *b, int32_t out[XGO_SERVO_COUNT]);
+/* Limits of joint 0..11 (the servo register's byte range). */
+void xgo_board_joint_limits_mdeg(const xgo_board_t *b, unsigned joint, int32_t *lo, int32_t *hi);
+/* The feet (legs LF, RF, RH, LH) in the body frame, from the actual joints. */
+void xgo_board_feet_um(const xgo_board_t *b, int32_t out[XGO_LEG_COUNT][3]);
+/* Bit leg set: that foot is on the ground. */
+uint8_t xgo_board_contacts(const xgo_board_t *b);
+/* The body pose used this tick (machine frame: translation from the point
+ * on the ground under the standing body; z = height of the hip axes). */
+void xgo_board_body_pose(const xgo_board_t *b, xgo_body_pose_t *out);
+/* Commanded (registers 0x30..0x32) and produced (the gait, after the ramp)
+ * body velocity: vx, vy in um/s, yaw rate in mdeg/s. */
+void xgo_board_velocity(const xgo_board_t *b, int32_t cmd[3], int32_t produced[3]);
+/* What the IMU reports: roll, pitch, yaw. */
+void xgo_board_imu_mdeg(const xgo_board_t *b, int32_t rpy[3]);
+uint8_t xgo_board_battery_pct(const xgo_board_t *b);
+/* Where the robot is on the floor (leg odometry, xgo/odometry.h): origin at
+ * the power-up position, x forward at power-up, y left, yaw CCW. */
+void xgo_board_world_pose(const xgo_board_t *b, xgo_world_pose_t *out);
+
+/* ---- Emulator inputs: the world around the board, which a real board
+ * senses rather than is told. */
+
+/* The ground under the robot tilts by roll/pitch (the IMU reads the tilt;
+ * self-stabilisation, 0x61 = 1, levels the body). */
 void xgo_board_set_ground_tilt(xgo_board_t *b, int32_t roll_mdeg, int32_t pitch_mdeg);
+/* Ground tilt as set. */
+void xgo_board_ground_tilt(const xgo_board_t *b, int32_t *roll_mdeg, int32_t *pitch_mdeg);
+/* Battery charge now (0..100, larger values are 100); it drains from there. */
+void xgo_board_set_battery(xgo_board_t *b, uint8_t pct);
+/* A shove: the body tips by roll/pitch and springs back (xgo_imu_push). */
+void xgo_board_push(xgo_board_t *b, int32_t roll_mdeg, int32_t pitch_mdeg);
 
 /* The board's non-volatile data (a real board keeps it in flash): the
  * Bluetooth name and the servo zero offsets. A host port saves it when

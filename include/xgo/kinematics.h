@@ -96,6 +96,15 @@ void xgo_body_ik(const xgo_profile_t *p, const xgo_body_pose_t *pose,
                  const xgo_vec3_t feet_machine_um[XGO_LEG_COUNT],
                  xgo_vec3_t feet_leg_um[XGO_LEG_COUNT]);
 
+/* The inverse direction, for measuring where the feet are (odometry, the
+ * live view): a foot in its leg frame -> the body frame (origin at the body
+ * centre, body axes, z up); the four feet in the body frame -> the machine
+ * frame under the body pose. Coordinates saturate at +-2147 m. */
+void xgo_leg_to_body(const xgo_profile_t *p, xgo_leg_t leg, const xgo_vec3_t *foot_leg_um,
+                     xgo_vec3_t *foot_body_um);
+void xgo_body_to_machine(const xgo_body_pose_t *pose, const xgo_vec3_t body_um[XGO_LEG_COUNT],
+                         xgo_vec3_t machine_um[XGO_LEG_COUNT]);
+
 /* Body IK then leg IK for all four legs. Returns a bit mask of the legs
  * whose target was projected (bit n = leg index n); 0 when all reached. */
 unsigned xgo_body_to_joints(const xgo_profile_t *p, const xgo_body_pose_t *pose,

@@ -24,6 +24,7 @@
 #include "xgo/actions.h"
 #include "xgo/gait.h"
 #include "xgo/kinematics.h"
+#include "xgo/odometry.h"
 #include "xgo/regs.h"
 #include "xgo/sensors.h"
 #include "xgo/servos.h"
@@ -81,10 +82,16 @@ typedef struct xgo_motion_s {
     xgo_bam_t periodic_phase[6]; /* roll, pitch, yaw, x, y, z */
     int32_t stab_mdeg[2];     /* self-stabilisation roll, pitch correction */
     uint32_t nv_changes;      /* counts changes of non-volatile data */
+    uint8_t contact;          /* bit leg: foot on the ground this tick */
+    xgo_vec3_t feet_body_um[XGO_LEG_COUNT]; /* measured: FK of the actual joints,
+                                               body frame (z up) */
+    xgo_odometry_t odom;      /* world pose from the planted feet */
     struct {                  /* last body + leg IK solve (skipped when unchanged) */
         xgo_body_pose_t pose;
-        xgo_vec3_t feet[XGO_LEG_COUNT];
+        xgo_vec3_t feet[XGO_LEG_COUNT];     /* machine frame, as asked */
+        xgo_vec3_t feet_leg[XGO_LEG_COUNT]; /* the same in the leg frames */
         int32_t q_mdeg[XGO_SERVO_COUNT];
+        uint8_t projected;                  /* bit leg: target was unreachable */
         uint8_t valid;
     } ik_cache;
 } xgo_motion_t;

@@ -44,6 +44,8 @@ typedef struct xgo_imu_s {
     int32_t ground_roll_mdeg;  /* tilt of the ground under the robot */
     int32_t ground_pitch_mdeg;
     int32_t yaw_acc;           /* integrated yaw, mdeg * XGO_TICK_HZ, wrapped */
+    int32_t push_q10[2];       /* a shove's tilt (roll, pitch), mdeg * 1024 */
+    int32_t push_rate_q10[2];  /* its rate per tick, same unit */
     int32_t roll_mdeg;         /* outputs, updated by xgo_imu_tick */
     int32_t pitch_mdeg;
     int32_t yaw_mdeg;
@@ -51,6 +53,12 @@ typedef struct xgo_imu_s {
 
 void xgo_imu_init(xgo_imu_t *imu);
 void xgo_imu_set_ground_tilt(xgo_imu_t *imu, int32_t roll_mdeg, int32_t pitch_mdeg);
+/* A shove (an emulator input): the body is tipped by roll/pitch (mdeg, each
+ * clamped to +-30 degrees, added to any shove still ringing) and springs back
+ * as a damped oscillation (3 Hz, damping ratio 0.35: below 2 % of the tip
+ * after 0.5 s). The IMU reads it; self-stabilisation (0x61) reacts to it. */
+void xgo_imu_push(xgo_imu_t *imu, int32_t roll_mdeg, int32_t pitch_mdeg);
+
 /* Zero the integrated yaw (action 255 does this, like a power-up). */
 void xgo_imu_reset_yaw(xgo_imu_t *imu);
 

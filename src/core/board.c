@@ -36,6 +36,7 @@ static void emit(xgo_board_t *b, xgo_trace_kind_t kind, xgo_drop_reason_t reason
         return;
     }
     ev.kind = kind;
+    ev.source = b->source;
     ev.reason = reason;
     ev.frame = frame;
     ev.raw = raw;
@@ -95,15 +96,16 @@ static uint8_t count_unmapped(const xgo_regs_t *r, const xgo_frame_t *f)
     return n;
 }
 
-static void handle_write(xgo_board_t *b, const xgo_frame_t *f)
+static xgo_drop_reason_t handle_write(xgo_board_t *b, const xgo_frame_t *f)
 {
     const uint8_t unmapped = count_unmapped(&b->regs, f);
     const xgo_drop_reason_t why = xgo_regs_write(&b->regs, f->addr, f->data, f->len);
     if (why != XGO_DROP_NONE) {
         emit(b, XGO_TRACE_DROP, why, f, NULL, 0, 0);
-        return;
+        return why;
     }
     emit(b, XGO_TRACE_RX, XGO_DROP_NONE, f, NULL, 0, unmapped);
+    return XGO_DROP_NONE;
 }
 
 static void handle_read(xgo_board_t *b, const xgo_frame_t *f)
@@ -141,7 +143,7 @@ static void on_frame(void *ctx, const xgo_frame_t *f)
     if (f->type == XGO_TYPE_READ) {
         handle_read(b, f);
     } else {
-        handle_write(b, f);
+        (void)handle_write(b, f);
     }
 }
 
@@ -182,7 +184,30 @@ void xgo_board_set_trace(xgo_board_t *b, xgo_trace_fn fn, void *ctx)
 
 void xgo_board_receive(xgo_board_t *b, const uint8_t *bytes, size_t n, uint32_t now_ms)
 {
+    b->source = XGO_SOURCE_WIRE;
     xgo_parser_feed(&b->parser, bytes, n, now_ms);
+}
+
+xgo_drop_reason_t xgo_board_write(xgo_board_t *b, uint8_t source, uint8_t addr,
+                                  const uint8_t *data, size_t n)
+{
+    xgo_frame_t f;
+    xgo_drop_reason_t why;
+    f.type = XGO_TYPE_WRITE;
+    f.addr = addr;
+    f.len = (uint8_t)(n <= XGO_FRAME_MAX_DATA ? n : 0u);
+    f.data = data;
+    b->source = source;
+    if (n == 0 || n > XGO_FRAME_MAX_DATA || (size_t)addr + n > XGO_REG_COUNT) {
+        b->parser.stats.bad_range++;
+        emit(b, XGO_TRACE_DROP, XGO_DROP_BAD_RANGE, n <= XGO_FRAME_MAX_DATA ? &f : NULL, NULL, 0,
+             0);
+        why = XGO_DROP_BAD_RANGE;
+    } else {
+        why = handle_write(b, &f);
+    }
+    b->source = XGO_SOURCE_WIRE;
+    return why;
 }
 
 void xgo_board_poll(xgo_board_t *b, uint32_t now_ms)
@@ -199,6 +224,107 @@ void xgo_board_tick(xgo_board_t *b)
 void xgo_board_set_ground_tilt(xgo_board_t *b, int32_t roll_mdeg, int32_t pitch_mdeg)
 {
     xgo_imu_set_ground_tilt(&b->motion.imu, roll_mdeg, pitch_mdeg);
+}
+
+void xgo_board_ground_tilt(const xgo_board_t *b, int32_t *roll_mdeg, int32_t *pitch_mdeg)
+{
+    *roll_mdeg = b->motion.imu.ground_roll_mdeg;
+    *pitch_mdeg = b->motion.imu.ground_pitch_mdeg;
+}
+
+void xgo_board_set_battery(xgo_board_t *b, uint8_t pct)
+{
+    xgo_battery_init(&b->motion.battery, pct);
+    xgo_regs_set(&b->regs, XGO_REG_BATTERY, xgo_battery_percent(&b->motion.battery));
+}
+
+void xgo_board_push(xgo_board_t *b, int32_t roll_mdeg, int32_t pitch_mdeg)
+{
+    xgo_imu_push(&b->motion.imu, roll_mdeg, pitch_mdeg);
+}
+
+/* ------------------------------------------------------------ observers */
+
+#if (1000 % XGO_TICK_HZ) != 0
+#error "xgo_board_time_ms assumes a whole number of ms per tick"
+#endif
+
+uint32_t xgo_board_time_ms(const xgo_board_t *b)
+{
+    return b->ticks * (1000u / XGO_TICK_HZ);
+}
+
+uint8_t xgo_board_mode(const xgo_board_t *b)
+{
+    return b->motion.mode;
+}
+
+uint8_t xgo_board_action(const xgo_board_t *b)
+{
+    return b->motion.action_id;
+}
+
+void xgo_board_joints_mdeg(const xgo_board_t *b, int32_t out[XGO_SERVO_COUNT])
+{
+    memcpy(out, b->motion.servos.angle_mdeg, sizeof b->motion.servos.angle_mdeg);
+}
+
+void xgo_board_joint_limits_mdeg(const xgo_board_t *b, unsigned joint, int32_t *lo, int32_t *hi)
+{
+    const xgo_range_t *r = &b->motion.profile->joint_mdeg[joint % XGO_JOINT_COUNT];
+    *lo = r->lo;
+    *hi = r->hi;
+}
+
+void xgo_board_feet_um(const xgo_board_t *b, int32_t out[XGO_LEG_COUNT][3])
+{
+    unsigned leg;
+    for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
+        out[leg][0] = b->motion.feet_body_um[leg].x;
+        out[leg][1] = b->motion.feet_body_um[leg].y;
+        out[leg][2] = b->motion.feet_body_um[leg].z;
+    }
+}
+
+uint8_t xgo_board_contacts(const xgo_board_t *b)
+{
+    return b->motion.contact;
+}
+
+void xgo_board_body_pose(const xgo_board_t *b, xgo_body_pose_t *out)
+{
+    *out = b->motion.pose;
+}
+
+void xgo_board_velocity(const xgo_board_t *b, int32_t cmd[3], int32_t produced[3])
+{
+    static const uint8_t regs[3] = {XGO_REG_VX, XGO_REG_VY, XGO_REG_VYAW};
+    static const int32_t limits[3] = {XGO_VX_MAX_UM_S, XGO_VY_MAX_UM_S, XGO_VYAW_MAX_MDEG_S};
+    const int gait = b->motion.mode == XGO_MODE_WHOLE_UNIT;
+    unsigned i;
+    for (i = 0; i < 3; i++) {
+        cmd[i] = gait ? xgo_signed_byte_to_value(xgo_regs_get(&b->regs, regs[i]), limits[i]) : 0;
+    }
+    produced[0] = gait ? b->motion.gait.vx_um_s : 0;
+    produced[1] = gait ? b->motion.gait.vy_um_s : 0;
+    produced[2] = gait ? b->motion.gait.vyaw_mdeg_s : 0;
+}
+
+void xgo_board_imu_mdeg(const xgo_board_t *b, int32_t rpy[3])
+{
+    rpy[0] = b->motion.imu.roll_mdeg;
+    rpy[1] = b->motion.imu.pitch_mdeg;
+    rpy[2] = b->motion.imu.yaw_mdeg;
+}
+
+uint8_t xgo_board_battery_pct(const xgo_board_t *b)
+{
+    return xgo_battery_percent(&b->motion.battery);
+}
+
+void xgo_board_world_pose(const xgo_board_t *b, xgo_world_pose_t *out)
+{
+    xgo_odometry_pose(&b->motion.odom, out);
 }
 
 void xgo_board_get_nv(const xgo_board_t *b, xgo_board_nv_t *nv)

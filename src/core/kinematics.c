@@ -381,28 +381,41 @@ static int32_t dot30(int32_t a, int32_t b, int32_t c, int32_t d)
     return v > XGO_Q30_ONE ? XGO_Q30_ONE : (v < -XGO_Q30_ONE ? -XGO_Q30_ONE : (int32_t)v);
 }
 
+/* R = Rz(yaw) Ry(pitch) Rx(roll) in Q30. */
+static void pose_matrix(const xgo_body_pose_t *pose, xgo_q30_t m[3][3])
+{
+    xgo_q30_t sr, cr, sp, cp, sy, cy;
+    int32_t cysp, sysp;
+    xgo_sincos(xgo_mdeg_to_bam(pose->roll_mdeg), &sr, &cr);
+    xgo_sincos(xgo_mdeg_to_bam(pose->pitch_mdeg), &sp, &cp);
+    xgo_sincos(xgo_mdeg_to_bam(pose->yaw_mdeg), &sy, &cy);
+    cysp = mul30(cy, sp);
+    sysp = mul30(sy, sp);
+    m[0][0] = mul30(cy, cp);
+    m[0][1] = dot30(cysp, sr, -sy, cr);
+    m[0][2] = dot30(cysp, cr, sy, sr);
+    m[1][0] = mul30(sy, cp);
+    m[1][1] = dot30(sysp, sr, cy, cr);
+    m[1][2] = dot30(sysp, cr, -cy, sr);
+    m[2][0] = -sp;
+    m[2][1] = mul30(cp, sr);
+    m[2][2] = mul30(cp, cr);
+}
+
+/* The thigh joint of a leg (leg frame origin) in the body frame. */
+static void leg_origin(const xgo_profile_t *p, int leg, int32_t *ox, int32_t *oy)
+{
+    *ox = xgo_leg_side_x((xgo_leg_t)leg) * p->hip_x_um;
+    *oy = xgo_leg_side_y((xgo_leg_t)leg) * (p->hip_y_um + p->abad_offset_um);
+}
+
 void xgo_body_ik(const xgo_profile_t *p, const xgo_body_pose_t *pose,
                  const xgo_vec3_t feet_machine_um[XGO_LEG_COUNT],
                  xgo_vec3_t feet_leg_um[XGO_LEG_COUNT])
 {
-    xgo_q30_t sr, cr, sp, cp, sy, cy;
-    xgo_q30_t m[3][3]; /* R = Rz(yaw) Ry(pitch) Rx(roll), Q30 */
+    xgo_q30_t m[3][3];
     int leg;
-    xgo_sincos(xgo_mdeg_to_bam(pose->roll_mdeg), &sr, &cr);
-    xgo_sincos(xgo_mdeg_to_bam(pose->pitch_mdeg), &sp, &cp);
-    xgo_sincos(xgo_mdeg_to_bam(pose->yaw_mdeg), &sy, &cy);
-    {
-        int32_t cysp = mul30(cy, sp), sysp = mul30(sy, sp);
-        m[0][0] = mul30(cy, cp);
-        m[0][1] = dot30(cysp, sr, -sy, cr);
-        m[0][2] = dot30(cysp, cr, sy, sr);
-        m[1][0] = mul30(sy, cp);
-        m[1][1] = dot30(sysp, sr, cy, cr);
-        m[1][2] = dot30(sysp, cr, -cy, sr);
-        m[2][0] = -sp;
-        m[2][1] = mul30(cp, sr);
-        m[2][2] = mul30(cp, cr);
-    }
+    pose_matrix(pose, m);
     for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
         /* foot relative to the body centre, in machine axes, saturated to
          * int32 so the products below stay within 2^61 */
@@ -414,11 +427,35 @@ void xgo_body_ik(const xgo_profile_t *p, const xgo_body_pose_t *pose,
         int64_t by = round_shift(xgo_mul_wide(m[0][1], vx) + xgo_mul_wide(m[1][1], vy) + xgo_mul_wide(m[2][1], vz), 30);
         int64_t bz = round_shift(xgo_mul_wide(m[0][2], vx) + xgo_mul_wide(m[1][2], vy) + xgo_mul_wide(m[2][2], vz), 30);
         /* into the leg frame: origin at the thigh joint, z down */
-        int32_t ox = xgo_leg_side_x((xgo_leg_t)leg) * p->hip_x_um;
-        int32_t oy = xgo_leg_side_y((xgo_leg_t)leg) * (p->hip_y_um + p->abad_offset_um);
+        int32_t ox, oy;
+        leg_origin(p, leg, &ox, &oy);
         feet_leg_um[leg].x = sat_i32(bx - ox);
         feet_leg_um[leg].y = sat_i32(by - oy);
         feet_leg_um[leg].z = sat_i32(-bz);
+    }
+}
+
+void xgo_leg_to_body(const xgo_profile_t *p, xgo_leg_t leg, const xgo_vec3_t *foot_leg_um,
+                     xgo_vec3_t *foot_body_um)
+{
+    int32_t ox, oy;
+    leg_origin(p, (int)leg, &ox, &oy);
+    foot_body_um->x = sat_i32((int64_t)foot_leg_um->x + ox);
+    foot_body_um->y = sat_i32((int64_t)foot_leg_um->y + oy);
+    foot_body_um->z = sat_i32(-(int64_t)foot_leg_um->z);
+}
+
+void xgo_body_to_machine(const xgo_body_pose_t *pose, const xgo_vec3_t body_um[XGO_LEG_COUNT],
+                         xgo_vec3_t machine_um[XGO_LEG_COUNT])
+{
+    xgo_q30_t m[3][3];
+    int leg;
+    pose_matrix(pose, m);
+    for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
+        const int32_t bx = body_um[leg].x, by = body_um[leg].y, bz = body_um[leg].z;
+        machine_um[leg].x = sat_i32(round_shift(xgo_mul_wide(m[0][0], bx) + xgo_mul_wide(m[0][1], by) + xgo_mul_wide(m[0][2], bz), 30) + pose->x_um);
+        machine_um[leg].y = sat_i32(round_shift(xgo_mul_wide(m[1][0], bx) + xgo_mul_wide(m[1][1], by) + xgo_mul_wide(m[1][2], bz), 30) + pose->y_um);
+        machine_um[leg].z = sat_i32(round_shift(xgo_mul_wide(m[2][0], bx) + xgo_mul_wide(m[2][1], by) + xgo_mul_wide(m[2][2], bz), 30) + pose->z_um);
     }
 }
 

@@ -61,6 +61,8 @@ static void standing_pose(const xgo_profile_t *p, xgo_body_pose_t *pose)
     pose->z_um = xgo_byte_to_range(&p->body_um[XGO_AXIS_Z], z->initial);
 }
 
+static void measure_feet(xgo_motion_t *m, int contact_known);
+
 static void standing_joints(const xgo_motion_t *m, int32_t q[XGO_SERVO_COUNT])
 {
     xgo_body_to_joints(m->profile, &m->stand, m->stance_um, (int32_t(*)[XGO_JOINT_COUNT])q);
@@ -82,6 +84,9 @@ void xgo_motion_init(xgo_motion_t *m, const xgo_profile_t *profile, uint8_t batt
     xgo_servos_init(&m->servos, profile, q);
     xgo_imu_init(&m->imu);
     xgo_battery_init(&m->battery, battery_pct);
+    xgo_odometry_init(&m->odom);
+    m->contact = 0x0Fu;
+    measure_feet(m, 1);
 }
 
 /* ------------------------------------------------------------ host writes */
@@ -363,6 +368,7 @@ static void action_pose(xgo_motion_t *m, xgo_body_pose_t *pose, xgo_vec3_t feet[
     if (!xgo_action_tick(&m->actions, &ap)) {
         m->action_id = 0;
     }
+    m->contact = 0;
     pose->x_um += ap.body_um[0];
     pose->y_um += ap.body_um[1];
     pose->z_um += ap.body_um[2];
@@ -373,6 +379,9 @@ static void action_pose(xgo_motion_t *m, xgo_body_pose_t *pose, xgo_vec3_t feet[
         feet[leg].x += ap.foot_um[leg][0];
         feet[leg].y += ap.foot_um[leg][1];
         feet[leg].z += ap.foot_um[leg][2];
+        if (ap.foot_um[leg][2] <= 0) {
+            m->contact |= (uint8_t)(1u << leg);
+        }
     }
 }
 
@@ -386,7 +395,15 @@ static void solve_joints(xgo_motion_t *m, const xgo_body_pose_t *pose,
         memcmp(m->ik_cache.feet, feet, sizeof m->ik_cache.feet) != 0) {
         m->ik_cache.pose = *pose;
         memcpy(m->ik_cache.feet, feet, sizeof m->ik_cache.feet);
-        xgo_body_to_joints(m->profile, pose, feet, (int32_t(*)[XGO_JOINT_COUNT])m->ik_cache.q_mdeg);
+        unsigned leg;
+        xgo_body_ik(m->profile, pose, feet, m->ik_cache.feet_leg);
+        m->ik_cache.projected = 0;
+        for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
+            if (xgo_leg_ik(m->profile, (xgo_leg_t)leg, &m->ik_cache.feet_leg[leg],
+                           &m->ik_cache.q_mdeg[XGO_JOINT_COUNT * leg]) != XGO_IK_REACHED) {
+                m->ik_cache.projected |= (uint8_t)(1u << leg);
+            }
+        }
         m->ik_cache.valid = 1;
     }
     memcpy(q, m->ik_cache.q_mdeg, sizeof m->ik_cache.q_mdeg);
@@ -407,7 +424,9 @@ static int whole_unit_targets(xgo_motion_t *m, const xgo_regs_t *r, int32_t q[XG
         xgo_gait_command_t cmd;
         gait_command_from_registers(m, r, &cmd);
         xgo_gait_tick(&m->gait, &cmd);
+        m->contact = 0;
         for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
+            m->contact |= (uint8_t)(m->gait.contact[leg] << leg);
             feet[leg].x = m->gait.foot_um[leg][0];
             feet[leg].y = m->gait.foot_um[leg][1];
             feet[leg].z = m->gait.foot_um[leg][2];
@@ -445,6 +464,53 @@ static int32_t servo_mode_step(const xgo_regs_t *r)
     const int32_t per_s = xgo_byte_to_range(&speed, xgo_regs_get(r, XGO_REG_SERVO_SPEED));
     const int32_t step = per_s / (int32_t)XGO_TICK_HZ;
     return step < 1 ? 1 : step;
+}
+
+/* ------------------------------------------------------------ measurement */
+
+/* Where the feet are (FK of the joints as they are, not as commanded) and,
+ * from the planted ones, how far the body moved on the floor. Outside the
+ * gait and the actions nobody says which feet are down: those within 1 mm
+ * of the lowest are. */
+static void measure_feet(xgo_motion_t *m, int contact_known)
+{
+    xgo_vec3_t machine[XGO_LEG_COUNT];
+    int32_t xy[XGO_LEG_COUNT][2];
+    int32_t low = INT32_MAX;
+    unsigned leg;
+    if (contact_known && m->ik_cache.valid && m->ik_cache.projected == 0 &&
+        memcmp(m->servos.angle_mdeg, m->ik_cache.q_mdeg, sizeof m->ik_cache.q_mdeg) == 0) {
+        /* The joints are where this tick's IK put them and every foot was
+         * reachable: the feet are where they were asked to be (FK of these
+         * angles agrees within the IK's 2.4 um), so spare the FK. */
+        for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
+            xgo_leg_to_body(m->profile, (xgo_leg_t)leg, &m->ik_cache.feet_leg[leg],
+                            &m->feet_body_um[leg]);
+            machine[leg] = m->ik_cache.feet[leg];
+        }
+    } else {
+        for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
+            xgo_vec3_t foot_leg;
+            xgo_leg_fk(m->profile, (xgo_leg_t)leg, &m->servos.angle_mdeg[XGO_JOINT_COUNT * leg],
+                       &foot_leg);
+            xgo_leg_to_body(m->profile, (xgo_leg_t)leg, &foot_leg, &m->feet_body_um[leg]);
+        }
+        xgo_body_to_machine(&m->pose, m->feet_body_um, machine);
+    }
+    for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
+        xy[leg][0] = machine[leg].x;
+        xy[leg][1] = machine[leg].y;
+        low = machine[leg].z < low ? machine[leg].z : low;
+    }
+    if (!contact_known) {
+        m->contact = 0;
+        for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
+            if (machine[leg].z <= low + 1000) {
+                m->contact |= (uint8_t)(1u << leg);
+            }
+        }
+    }
+    xgo_odometry_update(&m->odom, (const int32_t(*)[2])xy, m->contact);
 }
 
 /* ------------------------------------------------------------ publish */
@@ -494,6 +560,7 @@ void xgo_motion_tick(xgo_motion_t *m, xgo_regs_t *r)
     }
     xgo_servos_set_targets(&m->servos, q);
     xgo_servos_tick(&m->servos, step);
+    measure_feet(m, m->mode == XGO_MODE_WHOLE_UNIT || m->mode == XGO_MODE_ACTION);
     xgo_imu_tick(&m->imu, m->pose.roll_mdeg, m->pose.pitch_mdeg, m->pose.yaw_mdeg, yaw_rate);
     xgo_battery_tick(&m->battery, busy);
     if (m->mode == XGO_MODE_ACTION && m->action_id == 0) {

@@ -5,6 +5,8 @@
 
 #include <string.h>
 
+#include "wide.h"
+
 #define FULL_UPCT 100000000u
 #define UPCT_PER_PCT 1000000u
 
@@ -36,6 +38,45 @@ void xgo_imu_set_ground_tilt(xgo_imu_t *imu, int32_t roll_mdeg, int32_t pitch_md
     const int32_t lim = 45000;
     imu->ground_roll_mdeg = roll_mdeg < -lim ? -lim : (roll_mdeg > lim ? lim : roll_mdeg);
     imu->ground_pitch_mdeg = pitch_mdeg < -lim ? -lim : (pitch_mdeg > lim ? lim : pitch_mdeg);
+}
+
+/* The shove's spring per tick at 500 Hz, Q16: omega^2 dt^2 and 2 zeta omega
+ * dt for 3 Hz and zeta 0.35 (docs/motion.md). */
+#define PUSH_SPRING_Q16 93
+#define PUSH_DAMPING_Q16 1730
+#define PUSH_MAX_MDEG 30000
+
+static int32_t clamp_push(int32_t mdeg)
+{
+    return mdeg < -PUSH_MAX_MDEG ? -PUSH_MAX_MDEG : (mdeg > PUSH_MAX_MDEG ? PUSH_MAX_MDEG : mdeg);
+}
+
+void xgo_imu_push(xgo_imu_t *imu, int32_t roll_mdeg, int32_t pitch_mdeg)
+{
+    const int32_t add[2] = {clamp_push(roll_mdeg), clamp_push(pitch_mdeg)};
+    unsigned axis;
+    for (axis = 0; axis < 2; axis++) {
+        imu->push_q10[axis] = clamp_push((imu->push_q10[axis] >> 10) + add[axis]) * 1024;
+    }
+}
+
+/* Semi-implicit Euler step of the damped spring (tilt in mdeg * 1024, rate
+ * per tick in the same unit); the products need up to 36 bits. */
+static void push_tick(xgo_imu_t *imu)
+{
+    unsigned axis;
+    for (axis = 0; axis < 2; axis++) {
+        int32_t *x = &imu->push_q10[axis], *v = &imu->push_rate_q10[axis];
+        if ((*x | *v) == 0) {
+            continue;
+        }
+        *v -= (int32_t)((xgo_mul_wide(*x, PUSH_SPRING_Q16) + xgo_mul_wide(*v, PUSH_DAMPING_Q16)) >> 16);
+        *x += *v;
+        if (*x > -1024 && *x < 1024 && *v > -20 && *v < 20) {
+            *x = 0; /* settled below a millidegree */
+            *v = 0;
+        }
+    }
 }
 
 void xgo_imu_reset_yaw(xgo_imu_t *imu)
@@ -99,7 +140,10 @@ void xgo_imu_tick(xgo_imu_t *imu, int32_t body_roll_mdeg, int32_t body_pitch_mde
         imu->yaw_acc = (int32_t)acc;
         acc /= (int64_t)tick_hz;
     }
-    imu->roll_mdeg = wrap_mdeg((int64_t)body_roll_mdeg + imu->ground_roll_mdeg);
-    imu->pitch_mdeg = wrap_mdeg((int64_t)body_pitch_mdeg + imu->ground_pitch_mdeg);
+    push_tick(imu);
+    imu->roll_mdeg = wrap_mdeg((int64_t)body_roll_mdeg + imu->ground_roll_mdeg +
+                               (imu->push_q10[0] >> 10));
+    imu->pitch_mdeg = wrap_mdeg((int64_t)body_pitch_mdeg + imu->ground_pitch_mdeg +
+                                (imu->push_q10[1] >> 10));
     imu->yaw_mdeg = wrap_mdeg(acc + body_yaw_mdeg);
 }

@@ -1,0 +1,70 @@
+/*
+ * xgo/odometry.h - where the robot is on the floor: position and heading
+ * integrated from what the legs do.
+ *
+ * Each control tick the caller hands in the feet positions it has measured
+ * (forward kinematics of the actual joint angles, put into the machine frame
+ * with the body pose: x forward, y left, on the ground plane) and which feet
+ * are on the ground. A foot on the ground does not move in the world, so
+ * when planted feet move in the machine frame the body moved the other way:
+ * the rigid motion (rotation + translation in the floor plane) that carries
+ * this tick's planted feet onto their positions of the previous tick is the
+ * body's own motion during the tick (a least-squares fit, 2-D Procrustes).
+ * Feet that are planted at both ends of the tick take part; when fewer than
+ * two are (the trot's support switch) the previous tick's motion is used for
+ * that one tick. Standing still with unchanged feet adds exactly zero.
+ *
+ * World frame (docs/motion.md): origin = where the body was at power-up
+ * (init), x forward at power-up, y left, yaw counter-clockwise seen from
+ * above; nothing but xgo_odometry_init resets it (action 255 does not).
+ *
+ * Precision: positions accumulate in 1/256 um (int64), the heading as a
+ * 32-bit binary angle, so neither drifts by rounding at low speeds.
+ * Portable: no OS calls, no heap, no globals, no floating point.
+ */
+#ifndef XGO_ODOMETRY_H
+#define XGO_ODOMETRY_H
+
+#include <stdint.h>
+
+#include "xgo/fixed.h"
+#include "xgo/profile.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct xgo_odometry_s {
+    int64_t x_q8;                           /* world position, 1/256 um */
+    int64_t y_q8;
+    xgo_bam_t yaw;                          /* heading, binary angle */
+    int32_t prev_um[XGO_LEG_COUNT][2];      /* last tick's feet (machine x, y) */
+    uint8_t prev_contact;                   /* bit leg: planted last tick */
+    uint8_t have_prev;                      /* prev_* are valid */
+    int32_t last_d_q8[2];                   /* last tick's translation (body frame) */
+    int32_t last_dyaw;                      /* last tick's rotation (signed BAM) */
+    uint32_t extrapolated_ticks;            /* ticks with < 2 common planted feet */
+} xgo_odometry_t;
+
+/* The world pose as reported. */
+typedef struct xgo_world_pose_s {
+    int32_t x_um;
+    int32_t y_um;
+    int32_t yaw_mdeg; /* [-180000, 180000] */
+} xgo_world_pose_t;
+
+/* At the origin, heading 0, no previous feet. */
+void xgo_odometry_init(xgo_odometry_t *o);
+
+/* One tick: feet_um[leg] = (x, y) in the machine frame (um); contact bit leg
+ * set when that foot is on the ground. */
+void xgo_odometry_update(xgo_odometry_t *o, const int32_t feet_um[XGO_LEG_COUNT][2],
+                         uint8_t contact);
+
+void xgo_odometry_pose(const xgo_odometry_t *o, xgo_world_pose_t *out);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* XGO_ODOMETRY_H */

@@ -1,0 +1,127 @@
+/*
+ * Leg odometry: the body's motion on the floor from its planted feet
+ * (see xgo/odometry.h for the model and the frame).
+ */
+#include "xgo/odometry.h"
+
+#include <string.h>
+
+#include "wide.h"
+
+void xgo_odometry_init(xgo_odometry_t *o)
+{
+    memset(o, 0, sizeof *o);
+}
+
+static int64_t round_shift64(int64_t v, unsigned n)
+{
+    return (v + ((int64_t)1 << (n - 1))) >> n;
+}
+
+/* v / n for the support sizes 2..4, without a library division on cores
+ * that have none (3: multiply by 2^32 / 3, error below 1e-9 relative). */
+static int32_t div_small(int32_t v, unsigned n)
+{
+    switch (n) {
+    case 2:
+        return (int32_t)round_shift64(v, 1);
+    case 3:
+        return (int32_t)round_shift64(xgo_mul_wide(v, 1431655765), 32);
+    default:
+        return (int32_t)round_shift64(v, 2);
+    }
+}
+
+/* The rigid motion (rotation dyaw, translation d) that maps this tick's
+ * planted feet b onto last tick's a: a = R(dyaw) b + d, least squares. */
+static void fit_motion(const xgo_odometry_t *o, const int32_t feet_um[XGO_LEG_COUNT][2],
+                       uint8_t common, unsigned n, int32_t d_q8[2], int32_t *dyaw)
+{
+    int32_t sa[2] = {0, 0}, sb[2] = {0, 0};
+    int64_t cross = 0, dot = 0;
+    xgo_q30_t s, c;
+    unsigned leg;
+    for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
+        if (common & (1u << leg)) {
+            sa[0] += o->prev_um[leg][0];
+            sa[1] += o->prev_um[leg][1];
+            sb[0] += feet_um[leg][0];
+            sb[1] += feet_um[leg][1];
+        }
+    }
+    /* centred coordinates, scaled by n so they stay integers */
+    for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
+        if (common & (1u << leg)) {
+            const int32_t ax = (int32_t)n * o->prev_um[leg][0] - sa[0];
+            const int32_t ay = (int32_t)n * o->prev_um[leg][1] - sa[1];
+            const int32_t bx = (int32_t)n * feet_um[leg][0] - sb[0];
+            const int32_t by = (int32_t)n * feet_um[leg][1] - sb[1];
+            cross += xgo_mul_wide(bx, ay) - xgo_mul_wide(by, ax);
+            dot += xgo_mul_wide(bx, ax) + xgo_mul_wide(by, ay);
+        }
+    }
+    *dyaw = (cross == 0) ? 0 : xgo_bam_signed(xgo_atan2_64(cross, dot));
+    xgo_sincos((xgo_bam_t)*dyaw, &s, &c);
+    /* n d = Sa - R Sb, in 1/256 um */
+    {
+        const int64_t rx = round_shift64(xgo_mul_wide(c, sb[0]) - xgo_mul_wide(s, sb[1]), 22);
+        const int64_t ry = round_shift64(xgo_mul_wide(s, sb[0]) + xgo_mul_wide(c, sb[1]), 22);
+        d_q8[0] = div_small(xgo_sat32(((int64_t)sa[0] << 8) - rx), n);
+        d_q8[1] = div_small(xgo_sat32(((int64_t)sa[1] << 8) - ry), n);
+    }
+}
+
+/* Move the world pose by d (in the body's frame of last tick) and dyaw. */
+static void apply_motion(xgo_odometry_t *o, const int32_t d_q8[2], int32_t dyaw)
+{
+    xgo_q30_t s, c;
+    xgo_sincos(o->yaw, &s, &c);
+    o->x_q8 += round_shift64(xgo_mul_wide(c, d_q8[0]) - xgo_mul_wide(s, d_q8[1]), 30);
+    o->y_q8 += round_shift64(xgo_mul_wide(s, d_q8[0]) + xgo_mul_wide(c, d_q8[1]), 30);
+    o->yaw += (xgo_bam_t)dyaw;
+}
+
+static unsigned popcount4(uint8_t m)
+{
+    return (m & 1u) + ((m >> 1) & 1u) + ((m >> 2) & 1u) + ((m >> 3) & 1u);
+}
+
+void xgo_odometry_update(xgo_odometry_t *o, const int32_t feet_um[XGO_LEG_COUNT][2],
+                         uint8_t contact)
+{
+    const uint8_t common = o->have_prev ? (uint8_t)(o->prev_contact & contact & 0x0Fu) : 0u;
+    const unsigned n = popcount4(common);
+    if (common == contact && memcmp(o->prev_um, feet_um, sizeof o->prev_um) == 0) {
+        /* nothing moved (standing): no motion, and nothing to remember */
+        o->last_d_q8[0] = o->last_d_q8[1] = 0;
+        o->last_dyaw = 0;
+        return;
+    }
+    if (n >= 2) {
+        int32_t d_q8[2];
+        int32_t dyaw;
+        fit_motion(o, feet_um, common, n, d_q8, &dyaw);
+        apply_motion(o, d_q8, dyaw);
+        o->last_d_q8[0] = d_q8[0];
+        o->last_d_q8[1] = d_q8[1];
+        o->last_dyaw = dyaw;
+    } else if (o->have_prev && (o->last_d_q8[0] | o->last_d_q8[1] | o->last_dyaw) != 0) {
+        /* A support switch (no foot planted at both ends of the tick): the
+         * body keeps last tick's motion for this one tick. Used once, so a
+         * robot with no feet down does not glide on. */
+        apply_motion(o, o->last_d_q8, o->last_dyaw);
+        o->last_d_q8[0] = o->last_d_q8[1] = 0;
+        o->last_dyaw = 0;
+        o->extrapolated_ticks++;
+    }
+    memcpy(o->prev_um, feet_um, sizeof o->prev_um);
+    o->prev_contact = contact;
+    o->have_prev = 1;
+}
+
+void xgo_odometry_pose(const xgo_odometry_t *o, xgo_world_pose_t *out)
+{
+    out->x_um = xgo_sat32(round_shift64(o->x_q8, 8));
+    out->y_um = xgo_sat32(round_shift64(o->y_q8, 8));
+    out->yaw_mdeg = xgo_bam_to_mdeg(o->yaw);
+}
