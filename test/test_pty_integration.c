@@ -9,6 +9,7 @@
  * them are here.
  */
 #include <errno.h>
+#include <fcntl.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -507,9 +508,93 @@ static void test_link_onto_a_directory_is_refused(void)
     rmdir(g_link);
 }
 
+/* A name in the pty directory (where posix_openpt's slaves live) that no
+ * pty has now: what a link left by a killed emulator points at. */
+static void dangling_pty_name(char *out, size_t size)
+{
+    int master = posix_openpt(O_RDWR | O_NOCTTY);
+    const char *slave;
+    struct stat st;
+    int n;
+    TEST_ASSERT_TRUE(master >= 0);
+    slave = ptsname(master);
+    TEST_ASSERT_NOT_NULL(slave);
+    for (n = 4095; n > 0; n--) {
+        snprintf(out, size, "%.*s%d", (int)(strrchr(slave, '/') - slave + 1), slave, n);
+        if (lstat(out, &st) != 0 && errno == ENOENT) {
+            break;
+        }
+    }
+    close(master);
+    TEST_ASSERT_TRUE(n > 0);
+}
+
+/* --link with a symlink already there: refused, exit 1, the message names
+ * what the link points at, the link is left exactly as it was. */
+static void assert_link_refused(const char *old_target, const char *why)
+{
+    const char *args[] = {"--link", g_link, NULL};
+    char target[256];
+    ssize_t len;
+    emu_run_to_exit(args);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(1, WEXITSTATUS(g_emu.status), g_emu.err);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(0, strncmp(g_emu.err, "xgo-emu: --link ", 16), g_emu.err);
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(g_emu.err, old_target), g_emu.err);
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(g_emu.err, why), g_emu.err);
+    TEST_ASSERT_EQUAL_INT(0, (int)g_emu.out_len); /* no path printed */
+    len = readlink(g_link, target, sizeof target - 1);
+    TEST_ASSERT_TRUE_MESSAGE(len > 0, "the existing link was removed");
+    target[len] = '\0';
+    TEST_ASSERT_EQUAL_STRING(old_target, target);
+}
+
+/* `xgo-emu --link ~/.bashrc` must not destroy a dotfile symlink, nor take
+ * over a dangling link that never was a pty's. */
+static void test_link_onto_a_foreign_symlink_is_refused(void)
+{
+    char dotfile[160];
+    snprintf(dotfile, sizeof dotfile, "%s/dotfiles-bashrc", g_dir);
+    {
+        FILE *f = fopen(dotfile, "w");
+        TEST_ASSERT_NOT_NULL(f);
+        fputs("alias ll='ls -l'\n", f);
+        fclose(f);
+    }
+    TEST_ASSERT_EQUAL_INT(0, symlink(dotfile, g_link));
+    assert_link_refused(dotfile, "not to a pty");
+    xgo_test_emu_reset(&g_emu);
+    TEST_ASSERT_EQUAL_INT(0, unlink(dotfile)); /* dangling now, and still no pty's */
+    assert_link_refused(dotfile, "not to a pty");
+    unlink(dotfile);
+}
+
+/* A second emulator must not steal the first one's name: its pty exists. */
+static void test_second_instance_cannot_steal_the_link(void)
+{
+    static xgo_test_emu_t first;
+    char first_pty[256];
+    uint8_t vx;
+    emu_start_linked(NULL, NULL);
+    first = g_emu;
+    snprintf(first_pty, sizeof first_pty, "%s", g_emu.pty);
+    xgo_test_emu_init(&g_emu);
+    assert_link_refused(first_pty, "a pty that exists");
+    xgo_test_emu_reset(&g_emu);
+    g_emu = first;
+    g_port = port_open_like_pyserial(g_link, B115200); /* still the first one's */
+    read_regs(g_port, 0x30, 1, &vx);
+    TEST_ASSERT_EQUAL_HEX8(0x80, vx);
+    emu_stop_cleanly(SIGTERM);
+    assert_link_gone();
+}
+
+/* A link left by an emulator that was killed: it points into the pty
+ * directory at a pty that no longer exists. Replaced, with a note. */
 static void test_stale_symlink_is_replaced(void)
 {
-    TEST_ASSERT_EQUAL_INT(0, symlink("/nonexistent/xgo-old-pty", g_link));
+    char stale[256];
+    dangling_pty_name(stale, sizeof stale);
+    TEST_ASSERT_EQUAL_INT(0, symlink(stale, g_link));
     emu_start_linked(NULL, NULL); /* asserts the link now points at our pty */
     g_port = port_open_like_pyserial(g_link, B115200);
     {
@@ -518,6 +603,8 @@ static void test_stale_symlink_is_replaced(void)
         TEST_ASSERT_EQUAL_HEX8(0x80, vx);
     }
     emu_stop_cleanly(SIGTERM);
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(g_emu.err, "replaced the stale symlink"), g_emu.err);
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(g_emu.err, stale), g_emu.err);
     assert_link_gone();
 }
 
@@ -578,6 +665,7 @@ static void test_help_and_version_exit_0(void)
     TEST_ASSERT_EQUAL_INT(0, WEXITSTATUS(g_emu.status));
     TEST_ASSERT_EQUAL_INT(0, strncmp(g_emu.out, "usage: xgo-emu", 14));
     TEST_ASSERT_NOT_NULL(strstr(g_emu.out, "--baud-pacing"));
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(g_emu.out, "replaces only a stale pty link"), g_emu.out);
     xgo_test_emu_reset(&g_emu);
     emu_run_to_exit(version);
     TEST_ASSERT_EQUAL_INT(0, WEXITSTATUS(g_emu.status));
@@ -733,6 +821,8 @@ int main(void)
     RUN_TEST(test_link_onto_a_regular_file_is_refused);
     RUN_TEST(test_link_onto_a_directory_is_refused);
     RUN_TEST(test_stale_symlink_is_replaced);
+    RUN_TEST(test_link_onto_a_foreign_symlink_is_refused);
+    RUN_TEST(test_second_instance_cannot_steal_the_link);
     RUN_TEST(test_repointed_link_is_left_alone_at_exit);
     RUN_TEST(test_bad_options_exit_2_with_one_line_and_usage);
     RUN_TEST(test_help_and_version_exit_0);

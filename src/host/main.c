@@ -60,7 +60,7 @@ int main(int argc, char **argv)
     xgo_host_trace_t trace;
     xgo_host_state_t state;
     char err[8192]; /* room for messages that quote two long paths */
-    int replaced = 0;
+    char replaced[4096]; /* the target of a stale --link symlink we replaced */
     int rc;
 
     switch (xgo_host_options_parse(&opts, argc, argv, err, sizeof err)) {
@@ -94,13 +94,15 @@ int main(int argc, char **argv)
         return XGO_EXIT_RUNTIME;
     }
     if (opts.link_path != NULL) {
-        if (xgo_host_link_create(opts.link_path, pty.slave_path, &replaced, err, sizeof err) != 0) {
+        if (xgo_host_link_create(opts.link_path, pty.slave_path, replaced, sizeof replaced, err,
+                                 sizeof err) != 0) {
             fprintf(stderr, "xgo-emu: %s\n", err);
             xgo_host_pty_close(&pty);
             return XGO_EXIT_RUNTIME;
         }
-        if (replaced) {
-            fprintf(stderr, "xgo-emu: replaced the existing symlink %s\n", opts.link_path);
+        if (replaced[0] != '\0') {
+            fprintf(stderr, "xgo-emu: replaced the stale symlink %s (it pointed at %s)\n",
+                    opts.link_path, replaced);
         }
     }
 

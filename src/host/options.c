@@ -26,7 +26,7 @@ typedef struct xgo_host_option_s {
     const char *name;     /* long name without "--" */
     char short_name;      /* single-letter alias, 0 for none */
     const char *arg_name; /* shown in usage; NULL: the option takes no value */
-    const char *help;     /* one line */
+    const char *help;     /* one line, or lines split by '\n' */
     xgo_host_apply_fn apply;
 } xgo_host_option_t;
 
@@ -216,7 +216,10 @@ static xgo_host_apply_t xgo_host_apply_version(xgo_host_options_t *opts, const c
 }
 
 static const xgo_host_option_t xgo_host_option_table[] = {
-    {"link", 0, "PATH", "keep a symlink PATH -> the pty (a stale symlink is replaced)",
+    {"link", 0, "PATH",
+     "keep a symlink PATH -> the pty; replaces only a stale pty link\n"
+     "(one into the pty directory whose pty is gone); anything else\n"
+     "at PATH is refused (exit 1)",
      xgo_host_apply_link},
     {"trace", 0, NULL, "print one line per frame in, out or dropped on stderr", xgo_host_apply_trace},
     {"baud-pacing", 0, NULL, "delay replies by their wire time at the speed the host set",
@@ -317,6 +320,18 @@ xgo_host_parse_result_t xgo_host_options_parse(xgo_host_options_t *opts, int arg
     return XGO_HOST_PARSE_RUN;
 }
 
+/* A help text; lines after the first (split at '\n') are indented under
+ * it. */
+static void xgo_host_options_print_help(FILE *out, const char *help)
+{
+    const char *nl;
+    while ((nl = strchr(help, '\n')) != NULL) {
+        fprintf(out, "%.*s\n%25s", (int)(nl - help), help, "");
+        help = nl + 1;
+    }
+    fprintf(out, "%s\n", help);
+}
+
 void xgo_host_options_usage(FILE *out)
 {
     size_t i;
@@ -337,7 +352,8 @@ void xgo_host_options_usage(FILE *out)
             snprintf(left, sizeof left, "    --%s%s%s", opt->name, opt->arg_name ? " " : "",
                      opt->arg_name ? opt->arg_name : "");
         }
-        fprintf(out, "  %-22s %s\n", left, opt->help);
+        fprintf(out, "  %-22s ", left);
+        xgo_host_options_print_help(out, opt->help);
     }
     fputs("\n"
           "exit status: 0 after SIGINT/SIGTERM, 1 on a runtime error, 2 on misuse.\n"
