@@ -12,6 +12,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "codec.h"
 #include "unity.h"
 #include "xgo/kinematics.h"
 #include "xgo/regs.h"

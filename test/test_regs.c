@@ -6,6 +6,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "codec.h"
 #include "unity.h"
 #include "xgo/regs.h"
 

@@ -28,6 +28,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "codec.h"
 #include "xgo/kinematics.h"
 
 #ifndef M_PI

@@ -118,40 +118,6 @@ void xgo_stance_feet(const xgo_profile_t *p, xgo_vec3_t feet_machine_um[XGO_LEG_
 /* Standing pose: no shift, no rotation, z = stand_height_um. */
 void xgo_body_pose_stand(const xgo_profile_t *p, xgo_body_pose_t *pose);
 
-/* ------------------------------------------------------------ byte codes
- * The vendor library's linear map of a range [lo, hi] onto 0..255:
- *   encode: byte = floor(255 * (v - lo) / (hi - lo)), clamped to 0..255
- *           (the library's int(255 / (hi - lo) * (v - lo)), computed
- *           exactly; the middle of a symmetric range gives 0x7F);
- *   decode: v = lo + b * (hi - lo) / 255, rounded up to the next unit
- *           (error < 1 mdeg or 1 um; makes encode(decode(b)) == b).
- * No dead band here (0x7F and 0x80 decode to different values); that is the
- * board's job. */
-uint8_t xgo_range_to_byte(const xgo_range_t *r, int32_t v);
-int32_t xgo_byte_to_range(const xgo_range_t *r, uint8_t b);
-
-/* Servo registers: joint angle (mdeg) <-> byte, by joint index. */
-uint8_t xgo_joint_to_byte(const xgo_profile_t *p, xgo_joint_t joint, int32_t mdeg);
-int32_t xgo_byte_to_joint(const xgo_profile_t *p, xgo_joint_t joint, uint8_t b);
-
-/* Foot registers: leg-frame coordinate (um) <-> byte, by axis. */
-uint8_t xgo_foot_to_byte(const xgo_profile_t *p, xgo_axis_t axis, int32_t um);
-int32_t xgo_byte_to_foot(const xgo_profile_t *p, xgo_axis_t axis, uint8_t b);
-
-/* All twelve, in register order (out[0] is 0x50 / 0x40, out[11] is 0x5B / 0x4B). */
-void xgo_joints_to_bytes(const xgo_profile_t *p, const int32_t q_mdeg[XGO_LEG_COUNT][XGO_JOINT_COUNT],
-                         uint8_t out[XGO_LEG_COUNT * XGO_JOINT_COUNT]);
-void xgo_bytes_to_joints(const xgo_profile_t *p, const uint8_t in[XGO_LEG_COUNT * XGO_JOINT_COUNT],
-                         int32_t q_mdeg[XGO_LEG_COUNT][XGO_JOINT_COUNT]);
-void xgo_feet_to_bytes(const xgo_profile_t *p, const xgo_vec3_t feet_leg_um[XGO_LEG_COUNT],
-                       uint8_t out[XGO_LEG_COUNT * XGO_AXIS_COUNT]);
-void xgo_bytes_to_feet(const xgo_profile_t *p, const uint8_t in[XGO_LEG_COUNT * XGO_AXIS_COUNT],
-                       xgo_vec3_t feet_leg_um[XGO_LEG_COUNT]);
-
-/* Body registers 0x33..0x38 (x, y, z shift, roll, pitch, yaw) <-> pose. */
-void xgo_body_pose_to_bytes(const xgo_profile_t *p, const xgo_body_pose_t *pose, uint8_t out[6]);
-void xgo_bytes_to_body_pose(const xgo_profile_t *p, const uint8_t in[6], xgo_body_pose_t *pose);
-
 #ifdef __cplusplus
 }
 #endif

@@ -43,24 +43,9 @@ typedef enum xgo_mode_e {
     XGO_MODE_CALIBRATION = 0x05 /* 0x04 = 1: all joints limp, 0x21 records zeros */
 } xgo_mode_t;
 
-/* Command ranges of the velocity registers (vendor ranges; the vendor gives no
- * unit for vx/vy: cm/s, see docs/decisions.md). */
-#define XGO_VX_MAX_UM_S 250000
-#define XGO_VY_MAX_UM_S 180000
-#define XGO_VYAW_MAX_MDEG_S 100000
-
-/* Period registers 0x39..0x3B, 0x80..0x82: byte 1..255 -> 1.5 .. 8 s. */
-#define XGO_PERIOD_MIN_MS 1500
-#define XGO_PERIOD_MAX_MS 8000
-/* Mark time 0x3C: byte 1..255 -> step height (profile dependent max). */
-#define XGO_MARK_TIME_MIN_UM 10000
-
 /* Joint speed outside servo mode: the bound on how far any joint moves in one
  * tick (600 deg/s; 1200 mdeg at 500 Hz). */
 #define XGO_JOINT_STEP_MAX_MDEG ((int32_t)(600000u / XGO_TICK_HZ))
-/* Servo mode, register 0x5C: byte 0..255 -> 10 .. 600 deg/s. */
-#define XGO_SERVO_SPEED_MIN_MDEG_S 10000
-#define XGO_SERVO_SPEED_MAX_MDEG_S 600000
 
 typedef struct xgo_motion_s {
     const xgo_profile_t *profile;
@@ -105,10 +90,6 @@ void xgo_motion_tick(xgo_motion_t *m, xgo_regs_t *regs);
  * attitude); xgo_motion_tick ends with it, the board calls it at init too so
  * the joints read where they are from power-up. */
 void xgo_motion_publish(const xgo_motion_t *m, xgo_regs_t *r);
-
-/* Signed register byte -> value in [-limit, limit]; 0x7F and 0x80 are both
- * zero (the vendor library sends 0x7F for zero). */
-int32_t xgo_signed_byte_to_value(uint8_t b, int32_t limit);
 
 #ifdef __cplusplus
 }

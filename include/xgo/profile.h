@@ -92,6 +92,8 @@ typedef struct xgo_profile_s {
      * 0x36..0x38 (roll, pitch, yaw). */
     xgo_range_t body_um[XGO_AXIS_COUNT];
     xgo_range_t body_mdeg[XGO_AXIS_COUNT];
+    /* Mark time 0x3C: step height of bytes 1..255 (vendor MARK_TIME_LIMIT). */
+    xgo_range_t mark_time_um;
 } xgo_profile_t;
 
 #define XGO_PROFILE_MINI 0u /* same codes as register 0x02 and xgo_model_t */

@@ -43,8 +43,8 @@ extern "C" {
 typedef enum xgo_valid_e {
     XGO_VALID_ANY = 0,
     XGO_VALID_RANGE,  /* lo..hi inclusive */
-    XGO_VALID_UNLOAD, /* 0x00, 0x01, 0x11..0x14, 0x21..0x24 */
-    XGO_VALID_ACTION, /* 0..24, 255 */
+    XGO_VALID_UNLOAD, /* xgo_unload_decode() accepts it */
+    XGO_VALID_ACTION, /* 0..XGO_ACTION_LAST, XGO_ACTION_RESET (xgo/actions.h) */
     XGO_VALID_ASCII   /* printable ASCII 0x20..0x7E */
 } xgo_valid_t;
 
@@ -213,9 +213,16 @@ int xgo_regs_was_written(const xgo_regs_t *r, uint8_t addr);
 void xgo_regs_set_attitude(xgo_regs_t *r, int32_t roll_mdeg, int32_t pitch_mdeg, int32_t yaw_mdeg);
 void xgo_regs_set_diag(xgo_regs_t *r, const uint32_t counters[XGO_DIAG_COUNT]);
 
-/* Encodings used by the computed views (exposed for tests and tools). */
-uint8_t xgo_angle_to_byte(int32_t mdeg);            /* 0x80 = 0, 1 LSB = 180/128 deg */
-uint32_t xgo_mdeg_to_float32_bits(int32_t mdeg);    /* IEEE-754 bits of mdeg / 1000 */
+/* Register 0x20 (unload): 0x00 load all, 0x01 unload all, 0x11..0x14 unload
+ * leg 1..4, 0x21..0x24 load leg 1..4 - the one definition of that set. */
+typedef struct xgo_unload_s {
+    uint8_t load; /* 1: the joints hold (load), 0: they go limp (unload) */
+    uint8_t leg;  /* leg index 0..3, or XGO_UNLOAD_ALL_LEGS */
+} xgo_unload_t;
+#define XGO_UNLOAD_ALL_LEGS 0xFFu
+
+/* Returns 1 and fills *out for a value of the set; 0 (out untouched) else. */
+int xgo_unload_decode(uint8_t value, xgo_unload_t *out);
 
 #ifdef __cplusplus
 }

@@ -5,6 +5,8 @@
 
 #include <string.h>
 
+#include "codec.h"
+
 /* Firmware strings: the first character selects the vendor library's
  * parameter set ('M' Mini, 'L' Lite); the rest marks an emulator. */
 static const char k_firmware_mini[] = "M-EMU-0.1";

@@ -6,6 +6,8 @@
 
 #include <string.h>
 
+#include "codec.h"
+
 #define PERIODIC_AXES 6 /* roll, pitch, yaw, x, y, z */
 
 /* Self-stabilisation: each tick the correction moves by 1/STAB_GAIN_SHIFT^2
@@ -15,23 +17,6 @@
 static int32_t clamp32(int32_t v, int32_t lo, int32_t hi)
 {
     return v < lo ? lo : (v > hi ? hi : v);
-}
-
-int32_t xgo_signed_byte_to_value(uint8_t b, int32_t limit)
-{
-    xgo_range_t r;
-    if (b == 0x7Fu || b == 0x80u) {
-        return 0;
-    }
-    r.lo = -limit;
-    r.hi = limit;
-    return xgo_byte_to_range(&r, b);
-}
-
-static int32_t mark_time_max_um(const xgo_profile_t *p)
-{
-    /* vendor MARK_TIME_LIMIT: Mini 10..35 mm, Lite 10..25 mm */
-    return p == xgo_profile_lite() ? 25000 : 35000;
 }
 
 static void stance_array(const xgo_motion_t *m, int32_t out[XGO_LEG_COUNT][3])
@@ -149,14 +134,16 @@ static void reset_all(xgo_motion_t *m, xgo_regs_t *r)
 
 static void apply_unload(xgo_motion_t *m, uint8_t v)
 {
-    if (v == 0x00) {
-        xgo_servos_load(&m->servos, XGO_SERVO_ALL_MASK);
-    } else if (v == 0x01) {
-        xgo_servos_unload(&m->servos, XGO_SERVO_ALL_MASK);
-    } else if (v >= 0x11 && v <= 0x14) {
-        xgo_servos_unload(&m->servos, XGO_SERVO_LEG_MASK(v - 0x11));
-    } else if (v >= 0x21 && v <= 0x24) {
-        xgo_servos_load(&m->servos, XGO_SERVO_LEG_MASK(v - 0x21));
+    xgo_unload_t u;
+    uint16_t mask;
+    if (!xgo_unload_decode(v, &u)) {
+        return; /* the register file accepts only the set */
+    }
+    mask = u.leg == XGO_UNLOAD_ALL_LEGS ? XGO_SERVO_ALL_MASK : XGO_SERVO_LEG_MASK(u.leg);
+    if (u.load) {
+        xgo_servos_load(&m->servos, mask);
+    } else {
+        xgo_servos_unload(&m->servos, mask);
     }
 }
 
@@ -280,8 +267,7 @@ static void handle_writes(xgo_motion_t *m, xgo_regs_t *r)
 
 static void advance_periodic(xgo_motion_t *m, unsigned axis, uint8_t period_byte)
 {
-    static const xgo_range_t period_ms = {XGO_PERIOD_MIN_MS, XGO_PERIOD_MAX_MS};
-    const uint32_t ticks = (uint32_t)xgo_byte_to_range(&period_ms, period_byte) * XGO_TICK_HZ / 1000u;
+    const uint32_t ticks = (uint32_t)xgo_period_byte_to_ms(period_byte) * XGO_TICK_HZ / 1000u;
     /* One turn of phase per period: 2^32 / ticks per tick. */
     m->periodic_phase[axis] += (xgo_bam_t)(((uint64_t)1 << 32) / (ticks == 0 ? 1u : ticks));
 }
@@ -344,16 +330,11 @@ static void body_pose_from_registers(xgo_motion_t *m, const xgo_regs_t *r, xgo_b
 static void gait_command_from_registers(const xgo_motion_t *m, const xgo_regs_t *r,
                                         xgo_gait_command_t *cmd)
 {
-    static const xgo_range_t unit = {0, 255};
-    const uint8_t mark = xgo_regs_get(r, XGO_REG_MARK_TIME);
     memset(cmd, 0, sizeof *cmd);
     cmd->vx_um_s = xgo_signed_byte_to_value(xgo_regs_get(r, XGO_REG_VX), XGO_VX_MAX_UM_S);
     cmd->vy_um_s = xgo_signed_byte_to_value(xgo_regs_get(r, XGO_REG_VY), XGO_VY_MAX_UM_S);
     cmd->vyaw_mdeg_s = xgo_signed_byte_to_value(xgo_regs_get(r, XGO_REG_VYAW), XGO_VYAW_MAX_MDEG_S);
-    if (mark != 0) {
-        const int32_t span = mark_time_max_um(m->profile) - XGO_MARK_TIME_MIN_UM;
-        cmd->mark_time_um = XGO_MARK_TIME_MIN_UM + xgo_muldiv(xgo_byte_to_range(&unit, mark), span, 255);
-    }
+    cmd->mark_time_um = xgo_mark_time_byte_to_um(m->profile, xgo_regs_get(r, XGO_REG_MARK_TIME));
     cmd->type = xgo_regs_get(r, XGO_REG_GAIT_TYPE);
     cmd->pace = xgo_regs_get(r, XGO_REG_MOVE_MODE);
 }
@@ -460,8 +441,7 @@ static void leg_targets(xgo_motion_t *m, const xgo_regs_t *r, int32_t q[XGO_SERV
 
 static int32_t servo_mode_step(const xgo_regs_t *r)
 {
-    static const xgo_range_t speed = {XGO_SERVO_SPEED_MIN_MDEG_S, XGO_SERVO_SPEED_MAX_MDEG_S};
-    const int32_t per_s = xgo_byte_to_range(&speed, xgo_regs_get(r, XGO_REG_SERVO_SPEED));
+    const int32_t per_s = xgo_servo_speed_byte_to_mdeg_s(xgo_regs_get(r, XGO_REG_SERVO_SPEED));
     const int32_t step = per_s / (int32_t)XGO_TICK_HZ;
     return step < 1 ? 1 : step;
 }

@@ -35,6 +35,8 @@ static const xgo_profile_t mini_profile = {
     {{-35000, 35000}, {-19500, 19500}, {75000, 120000}},
     /* body roll, pitch, yaw */
     {{-20000, 20000}, {-22000, 22000}, {-16000, 16000}},
+    /* mark time step height */
+    {10000, 35000},
 };
 
 /* No public kinematic model of the Lite exists: its link geometry is
@@ -55,6 +57,7 @@ static const xgo_profile_t lite_profile = {
     {{-25000, 25000}, {-18000, 18000}, {60000, 110000}},
     {{-25000, 25000}, {-18000, 18000}, {60000, 110000}},
     {{-20000, 20000}, {-10000, 10000}, {-12000, 12000}},
+    {10000, 25000},
 };
 
 const xgo_profile_t *xgo_profile_mini(void)

@@ -5,6 +5,9 @@
 
 #include <string.h>
 
+#include "codec.h"
+#include "xgo/actions.h" /* XGO_ACTION_LAST, XGO_ACTION_RESET */
+
 #define UNMAPPED 0xFFu
 
 /* Flags column: 0 or a XGO_REGF_ suffix. */
@@ -53,9 +56,11 @@ int xgo_reg_value_valid(const xgo_reg_desc_t *d, uint8_t v)
     switch ((xgo_valid_t)d->valid) {
     case XGO_VALID_ANY: return 1;
     case XGO_VALID_RANGE: return v >= d->lo && v <= d->hi;
-    case XGO_VALID_UNLOAD:
-        return v == 0x00 || v == 0x01 || (v >= 0x11 && v <= 0x14) || (v >= 0x21 && v <= 0x24);
-    case XGO_VALID_ACTION: return v <= 24 || v == 255;
+    case XGO_VALID_UNLOAD: {
+        xgo_unload_t u;
+        return xgo_unload_decode(v, &u);
+    }
+    case XGO_VALID_ACTION: return v <= XGO_ACTION_LAST || v == XGO_ACTION_RESET;
     case XGO_VALID_ASCII: return v >= 0x20 && v <= 0x7E;
     }
     return 0;
@@ -250,55 +255,4 @@ void xgo_regs_set_diag(xgo_regs_t *r, const uint32_t counters[XGO_DIAG_COUNT])
     for (i = 0; i < XGO_DIAG_COUNT; i++) {
         put_u32_le(&r->mem[XGO_REG_DIAG + 4u * i], counters[i]);
     }
-}
-
-uint8_t xgo_angle_to_byte(int32_t mdeg)
-{
-    /* 1 LSB = 180/128 deg = 1406.25 mdeg; round half away from zero.
-     * +-180 degrees already give 256 and 0 (clamped below), so clamping the
-     * angle there first changes nothing and keeps mdeg * 128 within 2^25:
-     * 32-bit arithmetic. */
-    int32_t m = mdeg > 180000 ? 180000 : (mdeg < -180000 ? -180000 : mdeg);
-    int32_t scaled = m * 128;
-    int32_t q = (scaled >= 0 ? scaled + 90000 : scaled - 90000) / 180000;
-    q += 128;
-    if (q < 0) {
-        q = 0;
-    } else if (q > 255) {
-        q = 255;
-    }
-    return (uint8_t)q;
-}
-
-uint32_t xgo_mdeg_to_float32_bits(int32_t mdeg)
-{
-    /* value = m / 1000 with m = |mdeg|. Find e with 2^23 <= m*2^s/1000 < 2^24,
-     * then round the 24-bit significand to nearest, ties to even. */
-    uint32_t sign = mdeg < 0 ? 0x80000000u : 0u;
-    uint64_t m = mdeg < 0 ? (uint64_t)(-(int64_t)mdeg) : (uint64_t)mdeg;
-    int shift = 0; /* significand = m * 2^shift / 1000 */
-    uint64_t num, q, rem;
-    int32_t exponent;
-
-    if (m == 0) {
-        return sign;
-    }
-    /* Normalise num = m << shift into [2^23 * 1000, 2^24 * 1000). As
-     * 1 <= m <= 2^31 < 2^24 * 1000, shift is 0..33 and num < 2^44. */
-    num = m;
-    while (num < (uint64_t)1000u << 23) {
-        num <<= 1;
-        shift++;
-    }
-    q = num / 1000u;
-    rem = num % 1000u;
-    if (rem > 500u || (rem == 500u && (q & 1u) != 0)) {
-        q++;
-        if (q == (uint64_t)1u << 24) {
-            q >>= 1;
-            shift--;
-        }
-    }
-    exponent = 127 + 23 - shift;
-    return sign | ((uint32_t)exponent << 23) | ((uint32_t)q & 0x7FFFFFu);
 }

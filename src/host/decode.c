@@ -4,17 +4,8 @@
 
 #include <stdio.h>
 
+#include "xgo/actions.h"
 #include "xgo/regs.h"
-
-static const char *const xgo_host_action_names[] = {
-    "default stance", "lie down",    "stand up",       "creep",
-    "circle",         "step",        "squat",          "roll",
-    "pitch",          "yaw",         "three-axis rotation", "pee",
-    "sit",            "beckon",      "stretch",        "wave",
-    "sway",           "beg for food", "search for food", "shake hands",
-};
-
-#define XGO_HOST_ACTION_NAMES (sizeof xgo_host_action_names / sizeof xgo_host_action_names[0])
 
 /* Centred registers: 0x00 full reverse .. 0xFF full forward. 0x7F and 0x80
  * both mean zero (the vendor library sends 0x7F for zero). */
@@ -37,30 +28,28 @@ static int xgo_host_decode_choice(uint8_t value, const char *const *names, size_
     return snprintf(out, out_size, "invalid");
 }
 
+/* The value set and its meaning are the core's (xgo_unload_decode). */
 static int xgo_host_decode_unload(uint8_t value, char *out, size_t out_size)
 {
-    if (value == 0x00u) {
-        return snprintf(out, out_size, "all servos loaded");
+    xgo_unload_t u;
+    if (!xgo_unload_decode(value, &u)) {
+        return snprintf(out, out_size, "invalid");
     }
-    if (value == 0x01u) {
-        return snprintf(out, out_size, "unload all servos");
+    if (u.leg == XGO_UNLOAD_ALL_LEGS) {
+        return snprintf(out, out_size, u.load ? "all servos loaded" : "unload all servos");
     }
-    if (value >= 0x11u && value <= 0x14u) {
-        return snprintf(out, out_size, "unload leg %d", value - 0x10);
-    }
-    if (value >= 0x21u && value <= 0x24u) {
-        return snprintf(out, out_size, "load leg %d", value - 0x20);
-    }
-    return snprintf(out, out_size, "invalid");
+    return snprintf(out, out_size, u.load ? "load leg %d" : "unload leg %d", u.leg + 1);
 }
 
+/* Names and the valid ids are the core's (xgo_action_name); 0 stops. */
 static int xgo_host_decode_action(uint8_t value, char *out, size_t out_size)
 {
-    if (value < XGO_HOST_ACTION_NAMES) {
-        return snprintf(out, out_size, "%s", xgo_host_action_names[value]);
+    const char *name = xgo_action_name(value);
+    if (value == XGO_ACTION_NONE) {
+        return snprintf(out, out_size, "default stance");
     }
-    if (value == 255u) {
-        return snprintf(out, out_size, "reset");
+    if (name != NULL) {
+        return snprintf(out, out_size, "%s", name);
     }
     return snprintf(out, out_size, "action %u", (unsigned)value);
 }

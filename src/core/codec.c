@@ -1,0 +1,249 @@
+/*
+ * codec.c - the register file's byte encodings (see codec.h).
+ */
+#include "codec.h"
+
+#include "wide.h" /* XGO_CORE_NARROW_CPU */
+#include "xgo/fixed.h"
+#include "xgo/regs.h"
+
+/* ------------------------------------------------------------ range map, joints, feet, body */
+
+uint8_t xgo_range_to_byte(const xgo_range_t *r, int32_t v)
+{
+    int64_t span = (int64_t)r->hi - r->lo;
+    int64_t num;
+    if (span <= 0 || v <= r->lo) {
+        return 0u;
+    }
+    if (v >= r->hi) {
+        return 255u;
+    }
+    if (XGO_CORE_NARROW_CPU && span < ((int64_t)1 << 24)) {
+        /* 32-bit (the servo and foot ranges, every tick): 0 < off < span <
+         * 2^24, so num = 255 * off < 2^32 and span << 7 < 2^31. The quotient
+         * is below 255: eight steps of restoring division give it exactly,
+         * with no divide call on cores without a divider (Cortex-M0; with
+         * one, the plain division below is cheaper). */
+        uint32_t num32 = 255u * ((uint32_t)v - (uint32_t)r->lo);
+        uint32_t den = (uint32_t)span << 7;
+        uint32_t q = 0;
+        int i;
+        for (i = 0; i < 8; ++i) {
+            q <<= 1;
+            if (num32 >= den) {
+                num32 -= den;
+                q |= 1u;
+            }
+            den >>= 1;
+        }
+        return (uint8_t)q;
+    }
+    num = 255 * ((int64_t)v - r->lo); /* 0 < num < 255 * span */
+    return (uint8_t)(num / span);
+}
+
+int32_t xgo_byte_to_range(const xgo_range_t *r, uint8_t b)
+{
+    int64_t span = (int64_t)r->hi - r->lo;
+    int64_t off;
+    if (span <= 0) {
+        return r->lo;
+    }
+    /* ceil(b * span / 255): rounding up (by less than one unit) makes
+     * encode(decode(b)) == b for every byte whenever span >= 255 units. */
+    if (span < ((int64_t)1 << 23)) {
+        /* b * span + 254 < 2^31: a 32-bit division suffices */
+        return r->lo + (int32_t)(((uint32_t)b * (uint32_t)span + 254u) / 255u);
+    }
+    off = ((int64_t)b * span + 254) / 255; /* < 2^40 */
+    return xgo_sat32((int64_t)r->lo + off);
+}
+
+uint8_t xgo_joint_to_byte(const xgo_profile_t *p, xgo_joint_t joint, int32_t mdeg)
+{
+    return xgo_range_to_byte(&p->joint_mdeg[joint], mdeg);
+}
+
+int32_t xgo_byte_to_joint(const xgo_profile_t *p, xgo_joint_t joint, uint8_t b)
+{
+    return xgo_byte_to_range(&p->joint_mdeg[joint], b);
+}
+
+uint8_t xgo_foot_to_byte(const xgo_profile_t *p, xgo_axis_t axis, int32_t um)
+{
+    return xgo_range_to_byte(&p->foot_um[axis], um);
+}
+
+int32_t xgo_byte_to_foot(const xgo_profile_t *p, xgo_axis_t axis, uint8_t b)
+{
+    return xgo_byte_to_range(&p->foot_um[axis], b);
+}
+
+void xgo_joints_to_bytes(const xgo_profile_t *p, const int32_t q_mdeg[XGO_LEG_COUNT][XGO_JOINT_COUNT],
+                         uint8_t out[XGO_LEG_COUNT * XGO_JOINT_COUNT])
+{
+    int leg, j;
+    for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
+        for (j = 0; j < XGO_JOINT_COUNT; ++j) {
+            out[leg * XGO_JOINT_COUNT + j] = xgo_range_to_byte(&p->joint_mdeg[j], q_mdeg[leg][j]);
+        }
+    }
+}
+
+void xgo_bytes_to_joints(const xgo_profile_t *p, const uint8_t in[XGO_LEG_COUNT * XGO_JOINT_COUNT],
+                         int32_t q_mdeg[XGO_LEG_COUNT][XGO_JOINT_COUNT])
+{
+    int leg, j;
+    for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
+        for (j = 0; j < XGO_JOINT_COUNT; ++j) {
+            q_mdeg[leg][j] = xgo_byte_to_range(&p->joint_mdeg[j], in[leg * XGO_JOINT_COUNT + j]);
+        }
+    }
+}
+
+void xgo_feet_to_bytes(const xgo_profile_t *p, const xgo_vec3_t feet_leg_um[XGO_LEG_COUNT],
+                       uint8_t out[XGO_LEG_COUNT * XGO_AXIS_COUNT])
+{
+    int leg;
+    for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
+        out[leg * 3 + 0] = xgo_range_to_byte(&p->foot_um[XGO_AXIS_X], feet_leg_um[leg].x);
+        out[leg * 3 + 1] = xgo_range_to_byte(&p->foot_um[XGO_AXIS_Y], feet_leg_um[leg].y);
+        out[leg * 3 + 2] = xgo_range_to_byte(&p->foot_um[XGO_AXIS_Z], feet_leg_um[leg].z);
+    }
+}
+
+void xgo_bytes_to_feet(const xgo_profile_t *p, const uint8_t in[XGO_LEG_COUNT * XGO_AXIS_COUNT],
+                       xgo_vec3_t feet_leg_um[XGO_LEG_COUNT])
+{
+    int leg;
+    for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
+        feet_leg_um[leg].x = xgo_byte_to_range(&p->foot_um[XGO_AXIS_X], in[leg * 3 + 0]);
+        feet_leg_um[leg].y = xgo_byte_to_range(&p->foot_um[XGO_AXIS_Y], in[leg * 3 + 1]);
+        feet_leg_um[leg].z = xgo_byte_to_range(&p->foot_um[XGO_AXIS_Z], in[leg * 3 + 2]);
+    }
+}
+
+void xgo_body_pose_to_bytes(const xgo_profile_t *p, const xgo_body_pose_t *pose, uint8_t out[6])
+{
+    out[0] = xgo_range_to_byte(&p->body_um[XGO_AXIS_X], pose->x_um);
+    out[1] = xgo_range_to_byte(&p->body_um[XGO_AXIS_Y], pose->y_um);
+    out[2] = xgo_range_to_byte(&p->body_um[XGO_AXIS_Z], pose->z_um);
+    out[3] = xgo_range_to_byte(&p->body_mdeg[0], pose->roll_mdeg);
+    out[4] = xgo_range_to_byte(&p->body_mdeg[1], pose->pitch_mdeg);
+    out[5] = xgo_range_to_byte(&p->body_mdeg[2], pose->yaw_mdeg);
+}
+
+void xgo_bytes_to_body_pose(const xgo_profile_t *p, const uint8_t in[6], xgo_body_pose_t *pose)
+{
+    pose->x_um = xgo_byte_to_range(&p->body_um[XGO_AXIS_X], in[0]);
+    pose->y_um = xgo_byte_to_range(&p->body_um[XGO_AXIS_Y], in[1]);
+    pose->z_um = xgo_byte_to_range(&p->body_um[XGO_AXIS_Z], in[2]);
+    pose->roll_mdeg = xgo_byte_to_range(&p->body_mdeg[0], in[3]);
+    pose->pitch_mdeg = xgo_byte_to_range(&p->body_mdeg[1], in[4]);
+    pose->yaw_mdeg = xgo_byte_to_range(&p->body_mdeg[2], in[5]);
+}
+
+int32_t xgo_signed_byte_to_value(uint8_t b, int32_t limit)
+{
+    xgo_range_t r;
+    if (b == 0x7Fu || b == 0x80u) {
+        return 0;
+    }
+    r.lo = -limit;
+    r.hi = limit;
+    return xgo_byte_to_range(&r, b);
+}
+
+/* ------------------------------------------------------------ attitude */
+
+uint8_t xgo_angle_to_byte(int32_t mdeg)
+{
+    /* 1 LSB = 180/128 deg = 1406.25 mdeg; round half away from zero.
+     * +-180 degrees already give 256 and 0 (clamped below), so clamping the
+     * angle there first changes nothing and keeps mdeg * 128 within 2^25:
+     * 32-bit arithmetic. */
+    int32_t m = mdeg > 180000 ? 180000 : (mdeg < -180000 ? -180000 : mdeg);
+    int32_t scaled = m * 128;
+    int32_t q = (scaled >= 0 ? scaled + 90000 : scaled - 90000) / 180000;
+    q += 128;
+    if (q < 0) {
+        q = 0;
+    } else if (q > 255) {
+        q = 255;
+    }
+    return (uint8_t)q;
+}
+
+uint32_t xgo_mdeg_to_float32_bits(int32_t mdeg)
+{
+    /* value = m / 1000 with m = |mdeg|. Find e with 2^23 <= m*2^s/1000 < 2^24,
+     * then round the 24-bit significand to nearest, ties to even. */
+    uint32_t sign = mdeg < 0 ? 0x80000000u : 0u;
+    uint64_t m = mdeg < 0 ? (uint64_t)(-(int64_t)mdeg) : (uint64_t)mdeg;
+    int shift = 0; /* significand = m * 2^shift / 1000 */
+    uint64_t num, q, rem;
+    int32_t exponent;
+
+    if (m == 0) {
+        return sign;
+    }
+    /* Normalise num = m << shift into [2^23 * 1000, 2^24 * 1000). As
+     * 1 <= m <= 2^31 < 2^24 * 1000, shift is 0..33 and num < 2^44. */
+    num = m;
+    while (num < (uint64_t)1000u << 23) {
+        num <<= 1;
+        shift++;
+    }
+    q = num / 1000u;
+    rem = num % 1000u;
+    if (rem > 500u || (rem == 500u && (q & 1u) != 0)) {
+        q++;
+        if (q == (uint64_t)1u << 24) {
+            q >>= 1;
+            shift--;
+        }
+    }
+    exponent = 127 + 23 - shift;
+    return sign | ((uint32_t)exponent << 23) | ((uint32_t)q & 0x7FFFFFu);
+}
+
+/* ------------------------------------------------------------ motion commands */
+
+int32_t xgo_period_byte_to_ms(uint8_t b)
+{
+    static const xgo_range_t period_ms = {XGO_PERIOD_MIN_MS, XGO_PERIOD_MAX_MS};
+    return xgo_byte_to_range(&period_ms, b);
+}
+
+int32_t xgo_mark_time_byte_to_um(const xgo_profile_t *p, uint8_t b)
+{
+    const xgo_range_t *r = &p->mark_time_um;
+    if (b == 0) {
+        return 0;
+    }
+    return r->lo + xgo_muldiv(b, r->hi - r->lo, 255);
+}
+
+int32_t xgo_servo_speed_byte_to_mdeg_s(uint8_t b)
+{
+    static const xgo_range_t speed = {XGO_SERVO_SPEED_MIN_MDEG_S, XGO_SERVO_SPEED_MAX_MDEG_S};
+    return xgo_byte_to_range(&speed, b);
+}
+
+/* ------------------------------------------------------------ unload */
+
+int xgo_unload_decode(uint8_t value, xgo_unload_t *out)
+{
+    if (value == 0x00u || value == 0x01u) {
+        out->load = value == 0x00u;
+        out->leg = XGO_UNLOAD_ALL_LEGS;
+        return 1;
+    }
+    if ((value >= 0x11u && value <= 0x14u) || (value >= 0x21u && value <= 0x24u)) {
+        out->load = value >= 0x21u;
+        out->leg = (uint8_t)((value & 0x0Fu) - 1u);
+        return 1;
+    }
+    return 0;
+}
