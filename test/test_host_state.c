@@ -352,6 +352,27 @@ static void test_every_truncation_and_bit_flip_is_refused(void)
 }
 
 /* Files with a correct crc but a wrong layout (hand-edited and re-signed). */
+/* A valid file saved by a Windows editor (CR LF line ends, signed again or
+ * not): the reason says what is wrong, without a CR of its own. */
+static void assert_crlf_refused_plainly(void)
+{
+    static const char *const bodies[] = {
+        "xgo-state 1\r\nbt_name=A\r\nzero_offsets_mdeg=0 0 0 0 0 0 0 0 0 0 0 0\r\n",
+        "xgo-state 1\nbt_name=A\r\nzero_offsets_mdeg=0 0 0 0 0 0 0 0 0 0 0 0\n",
+    };
+    char text[512];
+    char why[200];
+    xgo_board_nv_t nv;
+    size_t i;
+    for (i = 0; i < sizeof bodies / sizeof bodies[0]; i++) {
+        sign(bodies[i], text, sizeof text);
+        why[0] = '\0';
+        TEST_ASSERT_FALSE(xgo_host_state_parse(text, strlen(text), &nv, why, sizeof why));
+        TEST_ASSERT_NOT_NULL_MESSAGE(strstr(why, "line endings must be LF"), why);
+        TEST_ASSERT_NULL_MESSAGE(strchr(why, '\r'), why);
+    }
+}
+
 static void test_layout_errors_are_refused_with_a_reason(void)
 {
     static const struct {
@@ -393,6 +414,7 @@ static void test_layout_errors_are_refused_with_a_reason(void)
     TEST_ASSERT_EQUAL_MEMORY(" ~ \0", nv.bt_name, 4);
     TEST_ASSERT_EQUAL_INT32(INT32_MIN, nv.zero_offset_mdeg[0]);
     TEST_ASSERT_EQUAL_INT32(INT32_MAX, nv.zero_offset_mdeg[11]);
+    assert_crlf_refused_plainly();
 }
 
 static void test_save_load_missing_and_permissions(void)
@@ -743,6 +765,13 @@ static void test_bad_state_file_refuses_to_start(void)
     text[len / 2] = '\0'; /* cut short */
     write_file(g_state, text);
     assert_refused("truncated");
+    sign("xgo-state 1\r\nbt_name=Rex\r\nzero_offsets_mdeg=0 0 0 0 0 0 0 0 0 0 0 0\r\n", text,
+         sizeof text); /* a Windows editor's line ends */
+    write_file(g_state, text);
+    assert_refused("CRLF");
+    TEST_ASSERT_TRUE(read_file(g_err, text, sizeof text) > 0);
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(text, "line endings must be LF"), text);
+    TEST_ASSERT_NULL_MESSAGE(strchr(text, '\r'), text);
     sign("xgo-state 1\nbt_name=Rex\nzero_offsets_mdeg=0 0 0 0 0 0 0 0 0 0 0 400000\n", text,
          sizeof text); /* syntax fine, the board refuses 400 degrees */
     TEST_ASSERT_TRUE(xgo_host_state_parse(text, strlen(text), &nv, why, sizeof why));
@@ -754,6 +783,41 @@ static void test_bad_state_file_refuses_to_start(void)
     args[1] = text;
     TEST_ASSERT_EQUAL_INT(1, emu_run_to_exit(args, err, sizeof err));
     TEST_ASSERT_NOT_NULL_MESSAGE(strstr(err, "no-such-dir/state"), err);
+}
+
+/* A FIFO (or any file that is not a regular file) as --state: a plain open
+ * of a FIFO waits for a writer forever. Refused at once instead: exit 1,
+ * one line saying what it is, nothing created. */
+static void test_non_regular_state_file_is_refused_at_once(void)
+{
+    static const struct {
+        const char *path; /* NULL: g_state, a FIFO */
+        const char *what;
+    } cases[] = {{NULL, "a FIFO"}, {"/dev/null", "a character device"}, {"/tmp", "a directory"}};
+    struct stat st;
+    size_t i;
+    for (i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        const char *path = cases[i].path != NULL ? cases[i].path : g_state;
+        const char *args[] = {"--state", path, NULL};
+        char err[2048];
+        const char *nl;
+        long long t0;
+        if (cases[i].path == NULL) {
+            TEST_ASSERT_EQUAL_INT(0, mkfifo(g_state, 0600));
+        }
+        t0 = xgo_test_now_ms();
+        TEST_ASSERT_EQUAL_INT_MESSAGE(1, emu_run_to_exit(args, err, sizeof err), path);
+        printf("--state %s refused after %lld ms\n", path, xgo_test_now_ms() - t0);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(0, strncmp(err, "xgo-emu: --state ", 17), err);
+        TEST_ASSERT_NOT_NULL_MESSAGE(strstr(err, "not a regular file"), err);
+        TEST_ASSERT_NOT_NULL_MESSAGE(strstr(err, cases[i].what), err);
+        nl = strchr(err, '\n');
+        TEST_ASSERT_TRUE_MESSAGE(nl != NULL && nl[1] == '\0', err); /* one line */
+        TEST_ASSERT_EQUAL_INT(0, lstat(path, &st));
+        xgo_test_emu_reset(&g_emu);
+    }
+    TEST_ASSERT_EQUAL_INT(0, lstat(g_state, &st));
+    TEST_ASSERT_TRUE(S_ISFIFO(st.st_mode)); /* left as it was */
 }
 
 static void test_ground_tilt_misuse_exits_2(void)
@@ -833,6 +897,7 @@ int main(void)
     RUN_TEST(test_planted_fifo_at_the_temporary_name_is_not_used);
     RUN_TEST(test_planted_file_at_the_temporary_name_is_not_adopted);
     RUN_TEST(test_bad_state_file_refuses_to_start);
+    RUN_TEST(test_non_regular_state_file_is_refused_at_once);
     RUN_TEST(test_ground_tilt_misuse_exits_2);
     RUN_TEST(test_ground_tilt_and_self_levelling);
     return UNITY_END();

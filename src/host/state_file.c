@@ -206,9 +206,21 @@ static int xgo_host_parse_offsets(const char *s, size_t len, int32_t out[XGO_SER
     return at == len;
 }
 
+/* Up to 40 characters of a line for a message, control bytes as \xNN. */
+static void xgo_host_quote(const char *s, size_t len, char *out, size_t size)
+{
+    size_t i, at = 0;
+    out[0] = '\0';
+    for (i = 0; i < len && i < 40 && at + 5 < size; i++) {
+        const unsigned char c = (unsigned char)s[i];
+        at += (size_t)snprintf(out + at, size - at, (c >= 0x20 && c < 0x7F) ? "%c" : "\\x%02X", c);
+    }
+}
+
 int xgo_host_state_parse(const char *text, size_t len, xgo_board_nv_t *nv, char *err,
                          size_t err_size)
 {
+    char quoted[4 * 40 + 1];
     const char *p = text;
     const char *end;
     const char *line;
@@ -222,9 +234,15 @@ int xgo_host_state_parse(const char *text, size_t len, xgo_board_nv_t *nv, char 
         snprintf(err, err_size, "not an xgo-emu state file (no 'xgo-state 1' first line)");
         return 0;
     }
+    /* An editor that saved it with CR LF: say so, rather than quote a CR. */
+    if (memchr(text, '\r', len) != NULL) {
+        snprintf(err, err_size, "line endings must be LF, this file has CR LF (or a stray CR)");
+        return 0;
+    }
     if (line_len != strlen(XGO_HOST_STATE_HEADER) + 1 || line[line_len - 1] != '1') {
-        snprintf(err, err_size, "unsupported format '%.*s' (this xgo-emu reads 'xgo-state 1')",
-                 (int)(line_len > 40 ? 40 : line_len), line);
+        xgo_host_quote(line, line_len, quoted, sizeof quoted);
+        snprintf(err, err_size, "unsupported format '%s' (this xgo-emu reads 'xgo-state 1')",
+                 quoted);
         return 0;
     }
     if (!xgo_host_check_crc(text, len, &body_end, err, err_size)) {
@@ -252,17 +270,50 @@ int xgo_host_state_parse(const char *text, size_t len, xgo_board_nv_t *nv, char 
 
 /* ------------------------------------------------------------ file I/O */
 
+/* "a FIFO", "a directory", ... for a message. */
+static const char *xgo_host_file_kind(const struct stat *st)
+{
+    if (S_ISFIFO(st->st_mode)) {
+        return "a FIFO";
+    }
+    if (S_ISDIR(st->st_mode)) {
+        return "a directory";
+    }
+    if (S_ISCHR(st->st_mode)) {
+        return "a character device";
+    }
+    if (S_ISBLK(st->st_mode)) {
+        return "a block device";
+    }
+    if (S_ISSOCK(st->st_mode)) {
+        return "a socket";
+    }
+    return "not a file";
+}
+
 xgo_host_state_load_t xgo_host_state_load(const char *path, xgo_board_nv_t *nv, char *err,
                                           size_t err_size)
 {
     char buf[XGO_HOST_STATE_MAX_BYTES + 1];
     size_t len = 0;
-    int fd = open(path, O_RDONLY | O_CLOEXEC);
+    struct stat st;
+    /* O_NONBLOCK: opening a FIFO for reading would wait for a writer. */
+    int fd = open(path, O_RDONLY | O_CLOEXEC | O_NONBLOCK | O_NOCTTY);
     if (fd < 0) {
         if (errno == ENOENT) {
             return XGO_HOST_STATE_MISSING;
         }
         snprintf(err, err_size, "cannot open: %s", strerror(errno));
+        return XGO_HOST_STATE_BAD;
+    }
+    if (fstat(fd, &st) != 0) {
+        snprintf(err, err_size, "cannot stat: %s", strerror(errno));
+        close(fd);
+        return XGO_HOST_STATE_BAD;
+    }
+    if (!S_ISREG(st.st_mode)) {
+        snprintf(err, err_size, "not a regular file (%s)", xgo_host_file_kind(&st));
+        close(fd);
         return XGO_HOST_STATE_BAD;
     }
     while (len < sizeof buf) {
