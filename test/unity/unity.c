@@ -42,7 +42,14 @@ static const char unity_str_pointless[]   = " You Asked Me To Compare Nothing, W
 static const char unity_str_null_exp[]    = " Expected pointer to be NULL";
 static const char unity_str_null_act[]    = " Actual pointer was NULL";
 static const char unity_str_null[]        = "NULL";
-static const char unity_str_spacer[]      = ". ";
+/* Between a failure's details and the assertion's message: upstream's
+ * UNITY_FAILURE_DETAIL_SEPARATOR (":" since Unity 2.6.1), overridable the same
+ * way. */
+#ifndef UNITY_FAILURE_DETAIL_SEPARATOR
+#define UNITY_FAILURE_DETAIL_SEPARATOR ":"
+#endif
+static const char unity_str_spacer[]      = UNITY_FAILURE_DETAIL_SEPARATOR;
+static const char unity_str_character[]   = " Character ";
 static const char unity_str_breaker[]     = "-----------------------";
 
 /* ================================================================ printing */
@@ -127,12 +134,11 @@ void UnityPrintNumberHex(const UNITY_UINT number, const char nibbles)
     }
 }
 
-/* Like printf("%.9g"), but with the exponent printed without zero padding
- * ("1e+10", "1e-5"), which is what upstream Unity prints in double mode. */
+/* printf("%.9g"): what upstream Unity prints in double mode, the exponent
+ * with at least two digits ("1e+10", "-2.5e-07"). */
 void UnityPrintFloat(const UNITY_DOUBLE number)
 {
     char buf[40];
-    const char *p;
     UNITY_DOUBLE value = number;
 
     if (value < 0.0) {
@@ -148,23 +154,11 @@ void UnityPrintFloat(const UNITY_DOUBLE number)
         return;
     }
     if (value == 0.0) {
-        UNITY_OUTPUT_CHAR('0');
+        UNITY_OUTPUT_CHAR('0'); /* also -0.0, which "%.9g" would print as "-0" */
         return;
     }
     (void)snprintf(buf, sizeof buf, "%.9g", value);
-    for (p = buf; *p != '\0' && *p != 'e'; p++) {
-        UNITY_OUTPUT_CHAR(*p);
-    }
-    if (*p == 'e') {
-        UNITY_OUTPUT_CHAR(*p++);          /* 'e' */
-        if (*p == '+' || *p == '-') {
-            UNITY_OUTPUT_CHAR(*p++);      /* sign */
-        }
-        while (*p == '0' && p[1] != '\0') {
-            p++;                          /* drop zero padding */
-        }
-        UnityPrint(p);
-    }
+    UnityPrint(buf);
 }
 
 static unsigned unity_style_size(const UNITY_DISPLAY_STYLE_T style)
@@ -253,13 +247,7 @@ void UnityFail(const char *message, const UNITY_LINE_TYPE line)
     unity_abort_if_done();
     unity_result_begin(line);
     UnityPrint(unity_str_fail);
-    if (message != NULL) {
-        UNITY_OUTPUT_CHAR(':');
-        if (message[0] != ' ') {
-            UNITY_OUTPUT_CHAR(' ');
-        }
-        UnityPrint(message);
-    }
+    unity_add_message(message); /* "FAIL:message", as upstream prints it */
     unity_fail_and_bail();
 }
 
@@ -670,6 +658,41 @@ static void unity_print_quoted(const char *s, const UNITY_UINT32 length, const i
     UNITY_OUTPUT_CHAR('\'');
 }
 
+/* Index of the first character where two non-NULL strings differ within
+ * the first length characters (limited) or anywhere. */
+static UNITY_UINT32 unity_first_difference(const char *expected, const char *actual,
+                                           const UNITY_UINT32 length, const int limited)
+{
+    UNITY_UINT32 i = 0;
+    while ((!limited || i < length) && (expected[i] != '\0' || actual[i] != '\0') &&
+           expected[i] == actual[i]) {
+        i++;
+    }
+    return i;
+}
+
+/* " Character 4 Expected 'o' Was 'O'": where two strings part, as upstream
+ * reports it (only when neither is NULL). */
+static void unity_print_string_difference(const char *expected, const char *actual,
+                                          const UNITY_UINT32 length, const int limited)
+{
+    UNITY_UINT32 at;
+    if (expected == NULL || actual == NULL) {
+        return;
+    }
+    at = unity_first_difference(expected, actual, length, limited);
+    UnityPrint(unity_str_character);
+    UnityPrintNumberUnsigned(at);
+    UnityPrint(unity_str_expected);
+    UNITY_OUTPUT_CHAR('\'');
+    unity_print_char(expected[at]);
+    UNITY_OUTPUT_CHAR('\'');
+    UnityPrint(unity_str_was);
+    UNITY_OUTPUT_CHAR('\'');
+    unity_print_char(actual[at]);
+    UNITY_OUTPUT_CHAR('\'');
+}
+
 static void unity_fail_strings(const char *expected, const char *actual,
                                const UNITY_UINT32 length, const int limited,
                                const char *msg, const UNITY_LINE_TYPE line)
@@ -680,6 +703,7 @@ static void unity_fail_strings(const char *expected, const char *actual,
     unity_print_quoted(expected, length, limited);
     UnityPrint(unity_str_was);
     unity_print_quoted(actual, length, limited);
+    unity_print_string_difference(expected, actual, length, limited);
     unity_add_message(msg);
     unity_fail_and_bail();
 }
