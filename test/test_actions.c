@@ -26,6 +26,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "reference.h"
 #include "unity.h"
 #include "xgo/actions.h"
 #include "xgo/board.h"
@@ -450,22 +451,11 @@ static const int k_side_y[4] = {1, -1, -1, 1};
 /* Pose -> each foot in its leg frame (mm), feet fixed on the ground. */
 static void ref_body_ik(const geom_t *g, const xgo_pose_t *pose, double feet[4][3])
 {
-    double r = pose->body_mdeg[0] / 1000.0 / DEG, p = pose->body_mdeg[1] / 1000.0 / DEG,
-           y = pose->body_mdeg[2] / 1000.0 / DEG;
-    double cr = cos(r), sr = sin(r), cp = cos(p), sp = sin(p), cy = cos(y), sy = sin(y);
-    /* R = Rz(y) Ry(p) Rx(r) */
-    double m[3][3];
+    double m[3][3]; /* R = Rz(y) Ry(p) Rx(r) */
     double pos[3];
     int l, i;
-    m[0][0] = cy * cp;
-    m[0][1] = cy * sp * sr - sy * cr;
-    m[0][2] = cy * sp * cr + sy * sr;
-    m[1][0] = sy * cp;
-    m[1][1] = sy * sp * sr + cy * cr;
-    m[1][2] = sy * sp * cr - cy * sr;
-    m[2][0] = -sp;
-    m[2][1] = cp * sr;
-    m[2][2] = cp * cr;
+    xgo_ref_rotation(pose->body_mdeg[0] / 1000.0 / DEG, pose->body_mdeg[1] / 1000.0 / DEG,
+                     pose->body_mdeg[2] / 1000.0 / DEG, m);
     pos[0] = pose->body_um[0] / 1000.0;
     pos[1] = pose->body_um[1] / 1000.0;
     pos[2] = g->h0 + pose->body_um[2] / 1000.0;

@@ -6,6 +6,7 @@
  */
 #include <string.h>
 
+#include "board_io.h"
 #include "unity.h"
 #include "xgo/board.h"
 
@@ -52,34 +53,20 @@ static void send(const uint8_t *bytes, size_t n)
 
 static void send_write(uint8_t addr, const uint8_t *data, size_t n)
 {
-    uint8_t f[XGO_FRAME_MAX_LEN];
-    send(f, xgo_frame_encode(XGO_TYPE_WRITE, addr, data, n, f, sizeof f));
+    xgo_test_write(&board, addr, data, n, 0);
 }
 
 static void send_read(uint8_t addr, uint8_t count)
 {
-    uint8_t f[16];
-    send(f, xgo_frame_encode(XGO_TYPE_READ, addr, &count, 1, f, sizeof f));
+    xgo_test_request(&board, addr, count, 0);
 }
 
-/* Read `count` bytes at addr over the wire and check the reply's framing. */
+/* Read `count` bytes at addr over the wire and check the reply's framing
+ * (size, header, LEN, TYPE, ADDR, checksum, tail: test/support/board_io.h). */
 static void wire_read(uint8_t addr, uint8_t count, uint8_t *out)
 {
-    uint8_t reply[XGO_FRAME_MAX_LEN];
-    size_t n;
-    send_read(addr, count);
-    n = xgo_board_transmit(&board, reply, sizeof reply);
-    TEST_ASSERT_EQUAL_UINT(count + 8u, n);
-    TEST_ASSERT_EQUAL_HEX8(0x55, reply[0]);
-    TEST_ASSERT_EQUAL_HEX8(0x00, reply[1]);
-    TEST_ASSERT_EQUAL_UINT8(count + 8u, reply[2]);
-    TEST_ASSERT_EQUAL_HEX8(XGO_TYPE_READ_REPLY, reply[3]);
-    TEST_ASSERT_EQUAL_HEX8(addr, reply[4]);
-    TEST_ASSERT_EQUAL_HEX8(xgo_frame_checksum(reply[2], reply[3], reply[4], &reply[5], count),
-                           reply[5 + count]);
-    TEST_ASSERT_EQUAL_HEX8(0x00, reply[6 + count]);
-    TEST_ASSERT_EQUAL_HEX8(0xAA, reply[7 + count]);
-    memcpy(out, &reply[5], count);
+    const xgo_test_reply_t problem = xgo_test_read(&board, addr, count, 0, out);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(XGO_TEST_REPLY_OK, problem, xgo_test_reply_name(problem));
 }
 
 static uint8_t wire_read1(uint8_t addr)

@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "board_io.h" /* xgo_test_xorshift* */
 #include "unity.h"
 #include "xgo/fixed.h"
 
@@ -23,10 +24,7 @@ void tearDown(void) {}
 static uint64_t rng_state = 0x9E3779B97F4A7C15ull;
 static uint32_t rnd32(void)
 {
-    rng_state ^= rng_state << 13;
-    rng_state ^= rng_state >> 7;
-    rng_state ^= rng_state << 17;
-    return (uint32_t)(rng_state >> 16);
+    return xgo_test_xorshift64(&rng_state);
 }
 static uint64_t rnd64(void)
 {

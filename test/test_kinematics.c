@@ -12,7 +12,9 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "board_io.h" /* xgo_test_xorshift64 */
 #include "codec.h"
+#include "reference.h"
 #include "unity.h"
 #include "xgo/kinematics.h"
 #include "xgo/regs.h"
@@ -28,10 +30,7 @@ void tearDown(void) {}
 static uint64_t rng_state = 0x2545F4914F6CDD1Dull;
 static uint32_t rnd32(void)
 {
-    rng_state ^= rng_state << 13;
-    rng_state ^= rng_state >> 7;
-    rng_state ^= rng_state << 17;
-    return (uint32_t)(rng_state >> 16);
+    return xgo_test_xorshift64(&rng_state);
 }
 static double rnd_unit(void) /* [0, 1) */
 {
@@ -676,15 +675,7 @@ static void check_body(const xgo_profile_t *p, const xgo_body_pose_t *pose, cons
            y = pose->yaw_mdeg / 1000.0 * DEG;
     double R[3][3];
     int leg;
-    R[0][0] = cos(y) * cos(pt);
-    R[0][1] = cos(y) * sin(pt) * sin(r) - sin(y) * cos(r);
-    R[0][2] = cos(y) * sin(pt) * cos(r) + sin(y) * sin(r);
-    R[1][0] = sin(y) * cos(pt);
-    R[1][1] = sin(y) * sin(pt) * sin(r) + cos(y) * cos(r);
-    R[1][2] = sin(y) * sin(pt) * cos(r) - cos(y) * sin(r);
-    R[2][0] = -sin(pt);
-    R[2][1] = cos(pt) * sin(r);
-    R[2][2] = cos(pt) * cos(r);
+    xgo_ref_rotation(r, pt, y, R);
     xgo_body_ik(p, pose, feet, legs);
     for (leg = 0; leg < 4; ++leg) {
         double v[3], b[3];

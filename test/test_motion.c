@@ -1,13 +1,14 @@
 /*
  * The board moves: registers -> modes, gait, body pose, actions, servos, IMU
  * and battery, on virtual time (ticks). Each test drives the board through
- * its register file exactly as frames from a host would (xgo_regs_write),
- * and checks what a host would read back.
+ * the register-write path of a host's frames (xgo_board_write) and checks
+ * what a host would read back over the wire.
  */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "board_io.h"
 #include "codec.h"
 #include "unity.h"
 #include "xgo/board.h"
@@ -25,13 +26,13 @@ void tearDown(void)
 
 static void wr(uint8_t addr, uint8_t v)
 {
-    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_write(&board.regs, addr, &v, 1));
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_board_write(&board, XGO_SOURCE_CLI, addr, &v, 1));
 }
 
 static uint8_t rd(uint8_t addr)
 {
     uint8_t v;
-    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_read(&board.regs, addr, 1, &v));
+    TEST_ASSERT_EQUAL_INT(XGO_TEST_REPLY_OK, xgo_test_read(&board, addr, 1, 0, &v));
     return v;
 }
 
@@ -40,16 +41,14 @@ static double rd_angle(uint8_t addr)
 {
     uint8_t b[4];
     float f;
-    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_read(&board.regs, addr, 4, b));
+    TEST_ASSERT_EQUAL_INT(XGO_TEST_REPLY_OK, xgo_test_read(&board, addr, 4, 0, b));
     memcpy(&f, b, 4);
     return f;
 }
 
 static void ticks(unsigned n)
 {
-    while (n--) {
-        xgo_board_tick(&board);
-    }
+    xgo_test_ticks(&board, n);
 }
 
 /* Vendor encoding of a value in [-limit, limit] (what xgolib sends). */
@@ -366,7 +365,8 @@ static void test_nv_data_round_trip_and_validation(void)
 static void test_bluetooth_rename_counts_as_nv_change(void)
 {
     const uint32_t before = xgo_board_nv_changes(&board);
-    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_write(&board.regs, 0x13, (const uint8_t *)"Rex", 3));
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE,
+                          xgo_board_write(&board, XGO_SOURCE_CLI, 0x13, (const uint8_t *)"Rex", 3));
     ticks(1);
     TEST_ASSERT_EQUAL_UINT32(before + 1, xgo_board_nv_changes(&board));
 }
@@ -428,7 +428,8 @@ static void test_reset_restores_the_initial_table(void)
     for (i = 0; i < sizeof touched; i++) {
         wr(touched[i], 1);
     }
-    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_write(&board.regs, 0x13, (const uint8_t *)"Rex", 3));
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE,
+                          xgo_board_write(&board, XGO_SOURCE_CLI, 0x13, (const uint8_t *)"Rex", 3));
     ticks(300);
     wr(XGO_REG_ACTION, 255);
     ticks(1);
@@ -489,10 +490,7 @@ static void test_lite_profile_version_and_ranges(void)
 static uint32_t rng_state = 0x9E3779B9u;
 static uint32_t rng(void)
 {
-    rng_state ^= rng_state << 13;
-    rng_state ^= rng_state >> 17;
-    rng_state ^= rng_state << 5;
-    return rng_state;
+    return xgo_test_xorshift32(&rng_state);
 }
 
 static void test_random_commands_never_jump_joints_or_break_limits(void)
@@ -508,7 +506,7 @@ static void test_random_commands_never_jump_joints_or_break_limits(void)
         if (rng() % 50 == 0) {
             const uint8_t addr = regs[rng() % sizeof regs];
             const uint8_t v = (uint8_t)rng();
-            (void)xgo_regs_write(&board.regs, addr, &v, 1); /* invalid ones are rejected */
+            (void)xgo_board_write(&board, XGO_SOURCE_CLI, addr, &v, 1); /* invalid ones are rejected */
         }
         ticks(1);
         for (i = 0; i < XGO_SERVO_COUNT; i++) {

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "board_io.h"
 #include "codec.h"
 #include "unity.h"
 #include "xgo/board.h"
@@ -30,9 +31,7 @@ static void wr(uint8_t addr, uint8_t v)
 
 static void ticks(unsigned n)
 {
-    while (n--) {
-        xgo_board_tick(&board);
-    }
+    xgo_test_ticks(&board, n);
 }
 
 static xgo_world_pose_t world(void)

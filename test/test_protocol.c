@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "board_io.h" /* xgo_test_xorshift* */
 #include "unity.h"
 #include "xgo/protocol.h"
 
@@ -348,11 +349,8 @@ static void test_header_bytes_repeated_do_not_hide_frame(void)
 static uint32_t rng_state;
 static uint32_t rng(void)
 {
-    /* xorshift32: deterministic, fixed seed per test */
-    rng_state ^= rng_state << 13;
-    rng_state ^= rng_state >> 17;
-    rng_state ^= rng_state << 5;
-    return rng_state;
+    /* deterministic, fixed seed per test */
+    return xgo_test_xorshift32(&rng_state);
 }
 
 #define STREAM_MAX 200000

@@ -16,6 +16,7 @@
 #include <stdlib.h>
 #include <time.h>
 
+#include "board_io.h"
 #include "xgo/board.h"
 
 static double now_s(void)
@@ -23,13 +24,6 @@ static double now_s(void)
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
-}
-
-static void write_reg(xgo_board_t *b, uint8_t addr, uint8_t v)
-{
-    uint8_t frame[16];
-    size_t n = xgo_frame_encode(XGO_TYPE_WRITE, addr, &v, 1, frame, sizeof frame);
-    xgo_board_receive(b, frame, n, 0);
 }
 
 int main(int argc, char **argv)
@@ -44,15 +38,13 @@ int main(int argc, char **argv)
         return 2;
     }
     xgo_board_init(&board, NULL);
-    write_reg(&board, XGO_REG_VX, 0xE0);         /* forward ~19 cm/s */
-    write_reg(&board, XGO_REG_VYAW, 0xA0);       /* turning ~25 deg/s */
-    write_reg(&board, XGO_REG_BODY_ROLL, 0xA0);  /* body pose on top */
-    write_reg(&board, XGO_REG_BODY_Z, 0x60);
-    write_reg(&board, XGO_REG_PERIOD_PITCH, 0x40);
+    xgo_test_write1(&board, XGO_REG_VX, 0xE0, 0);        /* forward ~19 cm/s */
+    xgo_test_write1(&board, XGO_REG_VYAW, 0xA0, 0);      /* turning ~25 deg/s */
+    xgo_test_write1(&board, XGO_REG_BODY_ROLL, 0xA0, 0); /* body pose on top */
+    xgo_test_write1(&board, XGO_REG_BODY_Z, 0x60, 0);
+    xgo_test_write1(&board, XGO_REG_PERIOD_PITCH, 0x40, 0);
     /* Warm up past the velocity ramp so every measured tick is trotting. */
-    for (i = 0; i < 1000; i++) {
-        xgo_board_tick(&board);
-    }
+    xgo_test_ticks(&board, 1000);
     t0 = now_s();
     for (i = 0; i < n; i++) {
         xgo_board_tick(&board);

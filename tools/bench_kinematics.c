@@ -29,6 +29,7 @@
 #include <time.h>
 
 #include "codec.h"
+#include "reference.h"
 #include "xgo/kinematics.h"
 
 #ifndef M_PI
@@ -95,20 +96,9 @@ BENCH_NOINLINE void bench_double_step(const dprofile_t *p, const dpose_t *pose, 
 
 void bench_double_step(const dprofile_t *p, const dpose_t *pose, const dvec_t feet[4], uint8_t out[12])
 {
-    double sr = sin(pose->roll), cr = cos(pose->roll);
-    double sp = sin(pose->pitch), cp = cos(pose->pitch);
-    double sy = sin(pose->yaw), cy = cos(pose->yaw);
     double m[3][3];
     int leg;
-    m[0][0] = cy * cp;
-    m[0][1] = cy * sp * sr - sy * cr;
-    m[0][2] = cy * sp * cr + sy * sr;
-    m[1][0] = sy * cp;
-    m[1][1] = sy * sp * sr + cy * cr;
-    m[1][2] = sy * sp * cr - cy * sr;
-    m[2][0] = -sp;
-    m[2][1] = cp * sr;
-    m[2][2] = cp * cr;
+    xgo_ref_rotation(pose->roll, pose->pitch, pose->yaw, m);
     for (leg = 0; leg < 4; ++leg) {
         double sx = (leg == 0 || leg == 1) ? 1.0 : -1.0;
         double s = (leg == 0 || leg == 3) ? 1.0 : -1.0;

@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <time.h>
 
+#include "board_io.h" /* xgo_test_xorshift32 */
 #include "xgo/board.h"
 
 #define STREAM_BYTES (1u << 20)
@@ -22,10 +23,7 @@ static uint8_t stream[STREAM_BYTES + XGO_FRAME_MAX_LEN];
 static uint32_t rng_state = 0x2545F491u;
 static uint32_t rng(void)
 {
-    rng_state ^= rng_state << 13;
-    rng_state ^= rng_state >> 17;
-    rng_state ^= rng_state << 5;
-    return rng_state;
+    return xgo_test_xorshift32(&rng_state);
 }
 
 /* Mixed traffic like a host's: mostly short writes to motion registers,

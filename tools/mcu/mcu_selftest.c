@@ -23,6 +23,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "board_io.h" /* test/support: the wire helpers the tests use */
 #include "measure.h"
 #include "semihost.h"
 #include "xgo/actions.h"
@@ -318,35 +319,16 @@ static void send(const uint8_t *bytes, size_t n, uint32_t now_ms)
 
 static void write_reg(uint8_t addr, uint8_t v, uint32_t now_ms)
 {
-    uint8_t frame[16];
-    size_t n = xgo_frame_encode(XGO_TYPE_WRITE, addr, &v, 1, frame, sizeof frame);
-    send(frame, n, now_ms);
+    xgo_test_write1(&board, addr, v, now_ms);
 }
 
 /* Read count registers at addr over the wire; checks the reply's framing
  * independently of the core's encoder and returns its data in data. */
 static void read_regs(uint8_t addr, uint8_t count, uint32_t now_ms, uint8_t *data)
 {
-    uint8_t req[XGO_READ_REQUEST_LEN];
-    uint8_t reply[XGO_FRAME_MAX_LEN + 1];
-    size_t n, i;
-    uint32_t sum;
-
-    n = xgo_frame_encode(XGO_TYPE_READ, addr, &count, 1, req, sizeof req);
-    send(req, n, now_ms);
-    n = xgo_board_transmit(&board, reply, sizeof reply);
-    if (n != (size_t)count + 8u || reply[0] != 0x55 || reply[1] != 0x00 ||
-        reply[2] != (uint8_t)(count + 8u) || reply[3] != 0x12 || reply[4] != addr ||
-        reply[n - 2] != 0x00 || reply[n - 1] != 0xAA) {
-        fail(FAIL_FRAMING, "reply framing");
-    }
-    sum = (uint32_t)reply[2] + reply[3] + reply[4];
-    for (i = 0; i < count; i++) {
-        data[i] = reply[5 + i];
-        sum += reply[5 + i];
-    }
-    if (reply[n - 3] != (uint8_t)~sum) {
-        fail(FAIL_FRAMING, "reply checksum");
+    const xgo_test_reply_t problem = xgo_test_read(&board, addr, count, now_ms, data);
+    if (problem != XGO_TEST_REPLY_OK) {
+        fail(FAIL_FRAMING, xgo_test_reply_name(problem));
     }
 }
 

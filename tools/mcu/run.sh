@@ -29,7 +29,7 @@ case "$target" in
   *) echo "XGO_MCU_TARGET must be m0 or m3" >&2; exit 2 ;;
 esac
 armflags=("${cpu[@]}" "$opt" "${defs[@]}" -g -ffreestanding -ffunction-sections -fdata-sections
-  -Iinclude -I"$mcu")
+  -Iinclude -Itest/support -I"$mcu")
 
 echo "== build: bare-metal image (arm-none-eabi-gcc ${cpu[*]} $opt -ffreestanding -nostdlib)"
 objs=()
@@ -42,6 +42,8 @@ for name in measure semihost startup; do
   arm-none-eabi-gcc "${warn[@]}" "${armflags[@]}" -c "$mcu/$name.c" -o "$out/obj/$name.o"
   objs+=("$out/obj/$name.o")
 done
+arm-none-eabi-gcc "${warn[@]}" "${armflags[@]}" -c test/support/board_io.c -o "$out/obj/board_io.o"
+objs+=("$out/obj/board_io.o")
 # Our memcpy/memset must not be turned back into calls to themselves.
 arm-none-eabi-gcc "${warn[@]}" "${armflags[@]}" -fno-tree-loop-distribute-patterns \
   -c "$mcu/libc_min.c" -o "$out/obj/libc_min.o"
@@ -61,7 +63,8 @@ link "$out/mcu_fault.elf" "$out/obj/mcu_selftest_fault.o"
 
 echo "== build: host variant (gcc -O2)"
 host="$out/mcu_selftest_host"
-gcc "${warn[@]}" -O2 -Iinclude -I"$mcu" "$mcu/mcu_selftest.c" "$mcu/host_port.c" src/core/*.c -o "$host"
+gcc "${warn[@]}" -O2 -Iinclude -Itest/support -I"$mcu" "$mcu/mcu_selftest.c" "$mcu/host_port.c" \
+  test/support/board_io.c src/core/*.c -o "$host"
 
 echo "== sizes"
 arm-none-eabi-size "$elf"
