@@ -317,6 +317,43 @@ static void test_stalled_emulator_loses_no_request(void)
     emu_stop();
 }
 
+/* ------------------------- 5. a hang-up takes its partial frame with it */
+
+/* With --timeout-ms 0 nothing else ever ends a partial frame: the part of a
+ * request a host wrote before it hung up must not swallow the next
+ * session's requests. It is dropped (drop reason "hang-up", counted) once
+ * the hang-up is seen. */
+static void test_hangup_discards_the_partial_frame(void)
+{
+    enum { REQUESTS = 20 };
+    static const uint8_t partial[] = {0x55, 0x00, 0xFF, 0x00, 0x30}; /* a long write, begun */
+    uint32_t c[XGO_DIAG_COUNT];
+    char expect[64];
+    int i, answered = 0;
+    emu_start("--timeout-ms=0", "--trace");
+    g_port = port_open();
+    port_write(g_port, partial, sizeof partial);
+    xgo_test_sleep_ms(20); /* read and fed */
+    close(g_port);
+    xgo_test_sleep_ms(50); /* the hang-up is seen within a tick */
+    g_port = port_open();
+    for (i = 0; i < REQUESTS; i++) {
+        uint8_t reply[XGO_FRAME_OVERHEAD + 1];
+        answered += xgo_test_read_reply(g_port, (uint8_t)(0x30 + i % 3), 1, reply, 100) ==
+                    sizeof reply;
+    }
+    TEST_ASSERT_EQUAL_INT_MESSAGE(REQUESTS, answered, "requests swallowed by the old partial frame");
+    read_counters(g_port, c);
+    TEST_ASSERT_EQUAL_UINT32(1, c[XGO_DIAG_HANGUP_DISCARDS]);
+    TEST_ASSERT_EQUAL_UINT32(sizeof partial, c[XGO_DIAG_BYTES_DISCARDED]);
+    TEST_ASSERT_EQUAL_UINT32(REQUESTS + 1, c[XGO_DIAG_FRAMES_OK]);
+    emu_stop();
+    snprintf(expect, sizeof expect, " drop %s [55 00 FF 00 30]\n",
+             xgo_drop_reason_name(XGO_DROP_HANGUP));
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(g_emu.err, expect), g_emu.err);
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(g_emu.err, "  hangup_discards        1\n"), g_emu.err);
+}
+
 int main(void)
 {
     int rc;
@@ -331,6 +368,7 @@ int main(void)
     UNITY_BEGIN();
     RUN_TEST(test_stalled_emulator_loses_no_request);
     RUN_TEST(test_slow_reader_loses_no_request_and_no_write);
+    RUN_TEST(test_hangup_discards_the_partial_frame);
     rc = UNITY_END();
 
     rmdir(g_dir);

@@ -317,6 +317,31 @@ static void test_timeout_zero_disables_it(void)
     TEST_ASSERT_EQUAL_UINT32(0, parser.stats.timeouts);
 }
 
+/* A hang-up ends a partial frame even with the timeout off: dropped with
+ * its own reason and counter, a whole frame inside it still delivered. With
+ * nothing pending it does nothing. */
+static void test_hangup_drops_the_partial_frame(void)
+{
+    const uint8_t stray[] = {0x55, 0x00, 0x40, 0x00, 0x00};
+    init_parser(&parser, &rec, 0);
+    xgo_parser_hangup(&parser);
+    TEST_ASSERT_EQUAL_UINT(0, rec.n_drops);
+    TEST_ASSERT_EQUAL_UINT32(0, parser.stats.hangup_discards);
+    feed(stray, sizeof stray);
+    feed(k_spec_read, sizeof k_spec_read);
+    TEST_ASSERT_EQUAL_UINT(0, rec.n_frames);
+    xgo_parser_hangup(&parser);
+    TEST_ASSERT_EQUAL_UINT(1, rec.n_drops);
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_HANGUP, rec.drops[0]);
+    TEST_ASSERT_EQUAL_UINT32(1, parser.stats.hangup_discards);
+    TEST_ASSERT_EQUAL_UINT32(0, parser.stats.timeouts);
+    TEST_ASSERT_EQUAL_UINT(1, rec.n_frames);
+    TEST_ASSERT_EQUAL_HEX8(0x50, rec.frames[0].addr);
+    TEST_ASSERT_EQUAL_UINT32(sizeof stray, parser.stats.bytes_discarded);
+    TEST_ASSERT_EQUAL_UINT(0, xgo_parser_pending(&parser));
+    TEST_ASSERT_EQUAL_STRING("hang-up", xgo_drop_reason_name(XGO_DROP_HANGUP));
+}
+
 static void test_timeout_survives_clock_wrap(void)
 {
     const uint8_t partial[] = {0x55, 0x00, 0x09};
@@ -504,6 +529,7 @@ int main(void)
     RUN_TEST(test_slow_bytes_within_timeout_still_form_a_frame);
     RUN_TEST(test_timeout_zero_disables_it);
     RUN_TEST(test_timeout_survives_clock_wrap);
+    RUN_TEST(test_hangup_drops_the_partial_frame);
     RUN_TEST(test_header_bytes_repeated_do_not_hide_frame);
     RUN_TEST(test_random_garbage_never_hides_valid_frames);
     RUN_TEST(test_split_delivery_gives_identical_results);

@@ -429,7 +429,7 @@ static void test_pipelined_large_reads_all_arrive(void)
         TEST_ASSERT_EQUAL_HEX8(0xAA, r[REPLY - 1]);
     }
     /* The board's own tx_overflow counter (diagnostic block) stayed 0. */
-    read_regs(g_port, (uint8_t)(0xD0 + 4 * 11), 4, overflows);
+    read_regs(g_port, (uint8_t)(XGO_REG_DIAG + 4 * XGO_DIAG_TX_OVERFLOW), 4, overflows);
     TEST_ASSERT_EQUAL_HEX8(0, overflows[0] | overflows[1] | overflows[2] | overflows[3]);
     emu_stop_cleanly(SIGTERM);
 }

@@ -346,19 +346,28 @@ static void test_diag_block_is_u32_little_endian_and_read_only(void)
 {
     uint32_t counters[XGO_DIAG_COUNT];
     uint8_t out[4 * XGO_DIAG_COUNT];
+    uint8_t slots[4 * XGO_DIAG_SLOTS];
     size_t i;
     for (i = 0; i < XGO_DIAG_COUNT; i++) {
         counters[i] = 0x01020304u * (uint32_t)(i + 1);
     }
     xgo_regs_set_diag(&regs, counters);
-    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_read(&regs, 0xD0, sizeof out, out));
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_read(&regs, 0xC4, sizeof out, out));
     for (i = 0; i < XGO_DIAG_COUNT; i++) {
         const uint32_t v = (uint32_t)out[4 * i] | (uint32_t)out[4 * i + 1] << 8 |
                            (uint32_t)out[4 * i + 2] << 16 | (uint32_t)out[4 * i + 3] << 24;
         TEST_ASSERT_EQUAL_HEX32(counters[i], v);
     }
-    TEST_ASSERT_EQUAL_UINT(0x100, 0xD0 + sizeof out);
+    TEST_ASSERT_EQUAL_UINT(0xC4, XGO_REG_DIAG);
+    TEST_ASSERT_EQUAL_UINT(0x100, 0xC4 + 4 * XGO_DIAG_SLOTS);
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_read(&regs, 0xC4, 4 * XGO_DIAG_SLOTS, slots));
+    for (i = 4 * XGO_DIAG_COUNT; i < 4 * XGO_DIAG_SLOTS; i++) {
+        TEST_ASSERT_EQUAL_HEX8(0, slots[i]); /* unused slots read 0 */
+    }
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_READ_ONLY, xgo_regs_write(&regs, 0xC4, out, 1));
     TEST_ASSERT_EQUAL_INT(XGO_DROP_READ_ONLY, xgo_regs_write(&regs, 0xE0, out, 1));
+    /* 0xC0..0xC3 (written by the vendor library on other models) stay outside */
+    TEST_ASSERT_NULL(xgo_reg_find(0xC3));
 }
 
 static void test_table_is_consistent(void)

@@ -97,6 +97,12 @@ void xgo_board_receive(xgo_board_t *b, const uint8_t *bytes, size_t n, uint32_t 
 /* Apply the parser's silence timeout at now_ms. */
 void xgo_board_poll(xgo_board_t *b, uint32_t now_ms);
 
+/* The host hung up (a host port saw the line go away): a partial frame it
+ * left is dropped (reason XGO_DROP_HANGUP, traced, counted in
+ * hangup_discards) instead of swallowing the next host's first request. Call
+ * it after the departed host's last bytes were received. */
+void xgo_board_hangup(xgo_board_t *b);
+
 /* Move up to max queued reply bytes into out; returns how many. */
 size_t xgo_board_transmit(xgo_board_t *b, uint8_t *out, size_t max);
 

@@ -67,6 +67,7 @@ typedef enum xgo_drop_reason_e {
     XGO_DROP_READ_ONLY,   /* write touches a read-only register */
     XGO_DROP_BAD_VALUE,   /* write value outside the register's valid set */
     XGO_DROP_TX_OVERFLOW, /* reply did not fit the transmit buffer */
+    XGO_DROP_HANGUP,      /* partial frame of a host that hung up */
     XGO_DROP_REASON_COUNT
 } xgo_drop_reason_t;
 
@@ -82,6 +83,7 @@ typedef struct xgo_parser_stats_s {
     uint32_t bad_range;
     uint32_t bytes_discarded; /* every byte not delivered inside an accepted frame */
     uint32_t timeouts;
+    uint32_t hangup_discards; /* partial frames dropped because their host hung up */
 } xgo_parser_stats_t;
 
 /* Callbacks; any may be NULL. `on_drop` sees the bytes of the rejected
@@ -110,6 +112,13 @@ void xgo_parser_feed(xgo_parser_t *p, const uint8_t *bytes, size_t n, uint32_t n
 
 /* Apply the silence timeout without new bytes (call periodically). */
 void xgo_parser_poll(xgo_parser_t *p, uint32_t now_ms);
+
+/* The host hung up (the line went away): a partial frame it left will never
+ * complete and must not prefix the next host's bytes. Dropped as on a
+ * timeout (a whole frame hiding inside is still delivered), reason
+ * XGO_DROP_HANGUP, counted in hangup_discards. Nothing happens when no
+ * partial frame is held. */
+void xgo_parser_hangup(xgo_parser_t *p);
 
 /* Bytes currently held as a partial frame. */
 size_t xgo_parser_pending(const xgo_parser_t *p);

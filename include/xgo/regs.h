@@ -9,7 +9,7 @@
  *   - 0x62..0x64 roll/pitch/yaw: a read of 4+ bytes starting at one of them
  *     returns that angle as float32 little-endian degrees (built with integer
  *     arithmetic), a shorter read the one-byte encoding (docs/registers.md);
- *   - 0xD0..0xFF diagnostic counters, uint32 little-endian.
+ *   - 0xC4..0xFF diagnostic counters, uint32 little-endian.
  *
  * A write is validated whole before anything changes (docs/decisions.md).
  * Portable: no OS calls, no heap, no globals, no floating point.
@@ -110,7 +110,7 @@ typedef enum xgo_valid_e {
     X(PERIOD_X, 0x80, 1, RW, 0, 0x00, ANY, 0, 0, "period_x")                            \
     X(PERIOD_Y, 0x81, 1, RW, 0, 0x00, ANY, 0, 0, "period_y")                            \
     X(PERIOD_Z, 0x82, 1, RW, 0, 0x00, ANY, 0, 0, "period_z")                            \
-    X(DIAG, 0xD0, 48, R, COMPUTED, 0x00, ANY, 0, 0, "diag")
+    X(DIAG, 0xC4, 60, R, COMPUTED, 0x00, ANY, 0, 0, "diag")
 
 /* Register addresses: XGO_REG_VX == 0x30, ... */
 enum xgo_reg_addr_e {
@@ -123,8 +123,9 @@ enum xgo_reg_addr_e {
 #define XGO_FIRMWARE_LEN 10u
 #define XGO_BT_NAME_LEN 10u
 
-/* Diagnostic block at 0xD0: XGO_DIAG_COUNT uint32 little-endian counters, in
- * this order (docs/registers.md). Read-only; counters wrap at 2^32. One row
+/* Diagnostic block at 0xC4..0xFF: room for XGO_DIAG_SLOTS uint32 little-endian
+ * counters, XGO_DIAG_COUNT of them used, in this order (docs/registers.md);
+ * unused slots read 0. Read-only; counters wrap at 2^32. One row
  * per counter, the only list of them (enum, names and the board's mapping are
  * generated from it; new counters are appended, the order is the wire layout):
  *   X(ID, name, where the board keeps it: a member of xgo_board_t) */
@@ -140,7 +141,8 @@ enum xgo_reg_addr_e {
     X(REJECTED_READ_ONLY, rejected_read_only, regs.stats.rejected_read_only)           \
     X(REJECTED_VALUE, rejected_value, regs.stats.rejected_value)                       \
     X(IGNORED_UNMAPPED, ignored_unmapped, regs.stats.ignored_unmapped)                 \
-    X(TX_OVERFLOW, tx_overflow, tx_overflows)
+    X(TX_OVERFLOW, tx_overflow, tx_overflows)                                          \
+    X(HANGUP_DISCARDS, hangup_discards, parser.stats.hangup_discards)
 
 /* XGO_DIAG_FRAMES_OK == 0, ... */
 typedef enum xgo_diag_e {
@@ -149,6 +151,9 @@ typedef enum xgo_diag_e {
 #undef XGO_DIAG_ENUM_
     XGO_DIAG_COUNT
 } xgo_diag_t;
+
+/* Slots in the block (0xC4 + 4 * 15 = 0x100): at most this many counters. */
+#define XGO_DIAG_SLOTS 15u
 
 typedef struct xgo_reg_desc_s {
     uint8_t addr;

@@ -217,6 +217,11 @@ void xgo_board_poll(xgo_board_t *b, uint32_t now_ms)
     xgo_parser_poll(&b->parser, now_ms);
 }
 
+void xgo_board_hangup(xgo_board_t *b)
+{
+    xgo_parser_hangup(&b->parser);
+}
+
 void xgo_board_tick(xgo_board_t *b)
 {
     b->ticks++;

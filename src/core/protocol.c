@@ -29,6 +29,7 @@ const char *xgo_drop_reason_name(xgo_drop_reason_t reason)
     case XGO_DROP_READ_ONLY: return "read-only register";
     case XGO_DROP_BAD_VALUE: return "value not allowed";
     case XGO_DROP_TX_OVERFLOW: return "transmit buffer full";
+    case XGO_DROP_HANGUP: return "hang-up";
     case XGO_DROP_REASON_COUNT: break;
     }
     return "unknown";
@@ -86,6 +87,7 @@ static void count_drop(xgo_parser_t *p, xgo_drop_reason_t reason)
     case XGO_DROP_BAD_TYPE: p->stats.bad_type++; break;
     case XGO_DROP_BAD_RANGE: p->stats.bad_range++; break;
     case XGO_DROP_TIMEOUT: p->stats.timeouts++; break;
+    case XGO_DROP_HANGUP: p->stats.hangup_discards++; break;
     default: break;
     }
 }
@@ -204,22 +206,34 @@ static void scan(xgo_parser_t *p)
     }
 }
 
-/* Silence since the last byte: the partial frame will never complete, but a
- * whole frame may hide inside it. Drop its first byte and rescan until
- * nothing is left pending. */
-void xgo_parser_poll(xgo_parser_t *p, uint32_t now_ms)
+/* The partial frame will never complete (silence, hang-up), but a whole
+ * frame may hide inside it. Drop its first byte and rescan until nothing is
+ * left pending. */
+static void abandon(xgo_parser_t *p, xgo_drop_reason_t reason)
 {
-    if (p->end == 0 || p->timeout_ms == 0 || (uint32_t)(now_ms - p->last_rx_ms) < p->timeout_ms) {
-        return;
-    }
-    p->stats.timeouts++;
+    count_drop(p, reason);
     if (p->sink.on_drop != NULL) {
-        p->sink.on_drop(p->sink.ctx, XGO_DROP_TIMEOUT, p->buf, p->end);
+        p->sink.on_drop(p->sink.ctx, reason, p->buf, p->end);
     }
     while (p->end > 0) {
         p->stats.bytes_discarded++;
         consume(p, 1);
         scan(p);
+    }
+}
+
+void xgo_parser_poll(xgo_parser_t *p, uint32_t now_ms)
+{
+    if (p->end == 0 || p->timeout_ms == 0 || (uint32_t)(now_ms - p->last_rx_ms) < p->timeout_ms) {
+        return;
+    }
+    abandon(p, XGO_DROP_TIMEOUT);
+}
+
+void xgo_parser_hangup(xgo_parser_t *p)
+{
+    if (p->end > 0) {
+        abandon(p, XGO_DROP_HANGUP);
     }
 }
 

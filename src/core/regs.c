@@ -249,6 +249,10 @@ void xgo_regs_set_attitude(xgo_regs_t *r, int32_t roll_mdeg, int32_t pitch_mdeg,
     r->mem[XGO_REG_IMU_YAW] = xgo_angle_to_byte(yaw_mdeg);
 }
 
+/* Every counter has its slot in 0xC4..0xFF; a 16th needs a new block. */
+typedef char xgo_regs_diag_fits_[(XGO_DIAG_COUNT <= XGO_DIAG_SLOTS &&
+                                  XGO_REG_DIAG + 4u * XGO_DIAG_SLOTS == 0x100u) ? 1 : -1];
+
 void xgo_regs_set_diag(xgo_regs_t *r, const uint32_t counters[XGO_DIAG_COUNT])
 {
     size_t i;

@@ -216,12 +216,27 @@ static void xgo_host_loop_feed(xgo_host_loop_t *l, uint64_t now_us)
     l->in_orphaned = 0;
 }
 
+/* After a hang-up, once everything the departed host wrote has been fed: a
+ * partial frame it left must not prefix the next host's first request
+ * (with --timeout-ms 0 nothing else would ever end it). */
+static void xgo_host_loop_end_session(xgo_host_loop_t *l)
+{
+    if (l->hangup_pending) {
+        l->hangup_pending = 0;
+        xgo_board_hangup(l->board);
+        if (l->host_gone) {
+            xgo_host_loop_discard_replies(l); /* what a frame found inside it asked */
+        }
+    }
+}
+
 static void xgo_host_loop_host_left(xgo_host_loop_t *l)
 {
     if (l->host_gone) {
         return;
     }
     l->host_gone = 1;
+    l->hangup_pending = 1;
     l->counters.host_hangups++;
     l->counters.bytes_discarded += xgo_host_outq_clear(&l->out);
     xgo_host_loop_discard_replies(l);
@@ -274,6 +289,9 @@ static void xgo_host_loop_probe_host(xgo_host_loop_t *l, uint64_t now_us)
         return; /* EINTR: probe again next turn */
     }
     if ((pfd.revents & (POLLHUP | POLLERR)) == 0) {
+        if (!xgo_host_loop_input_waiting(l)) {
+            xgo_host_loop_end_session(l); /* before the new host's bytes arrive */
+        }
         l->host_gone = 0;
         l->counters.host_attaches++;
         return;
@@ -360,6 +378,7 @@ int xgo_host_loop_run(xgo_host_loop_t *l)
              * in the pty, are not silence on the wire. */
             xgo_host_loop_set_trace_time(l, now);
             xgo_board_poll(l->board, xgo_host_loop_wire_ms(l));
+            xgo_host_loop_end_session(l);
         }
         xgo_host_loop_take_replies(l, now, now);
         if (!l->host_gone) {

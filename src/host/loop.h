@@ -50,6 +50,7 @@ typedef struct xgo_host_loop_s {
     uint64_t tx_wire_free_us;   /* pacing: when our last queued byte leaves */
     int out_blocked;            /* last write hit EAGAIN: wait for POLLOUT */
     int host_gone;              /* no host has the slave open */
+    int hangup_pending;         /* the host left; its partial frame goes once its input is fed */
 
     /* The parser's clock: real time minus the time input was waiting (in
      * `in` or unread in the pty). Its silence timeout must measure silence

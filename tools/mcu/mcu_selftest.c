@@ -471,10 +471,10 @@ static uint32_t wire_digest(const char *tag, uint32_t now_ms)
     }
     l_end(&l);
 
-    read_regs(0x00, 0xD0, now_ms, buf); /* every register below the diagnostic block */
-    h = fnv_bytes(h, buf, 0xD0);
-    read_regs(XGO_REG_DIAG, 48, now_ms, buf);
-    h = fnv_bytes(h, buf, 48);
+    read_regs(0x00, XGO_REG_DIAG, now_ms, buf); /* every register below the diagnostic block */
+    h = fnv_bytes(h, buf, XGO_REG_DIAG);
+    read_regs(XGO_REG_DIAG, 4 * XGO_DIAG_SLOTS, now_ms, buf);
+    h = fnv_bytes(h, buf, 4 * XGO_DIAG_SLOTS);
     return h;
 }
 
