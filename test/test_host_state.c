@@ -1,5 +1,5 @@
 /*
- * test_host_state.c - xgo-emu's --state file and --ground-tilt.
+ * test_host_state.c - xgo-emu's --state file.
  *
  * Two halves:
  *   - the state file module itself (src/host/state_file.c is compiled into
@@ -8,7 +8,7 @@
  *   - xgo-emu end to end (XGO_EMU_PATH, fork/exec, a real pty): a round trip
  *     of the Bluetooth name and the zero offsets across a restart, 200 kills
  *     at random points while the host renames as fast as it can, a damaged
- *     file refused, --ground-tilt parsing and the IMU levelling.
+ *     file refused.
  *
  * Waits are real time and all bounded: a broken emulator fails the test
  * instead of hanging it. About 15 s in all.
@@ -246,18 +246,6 @@ static void read_regs(int fd, uint8_t addr, uint8_t count, uint8_t *values)
     TEST_ASSERT_EQUAL_INT_MESSAGE((int)want, (int)got, "incomplete reply");
     TEST_ASSERT_EQUAL_HEX8(addr, reply[4]);
     memcpy(values, reply + 5, count);
-}
-
-/* A 4-byte IMU read: float32 little-endian degrees. */
-static float read_angle(int fd, uint8_t addr)
-{
-    uint8_t b[4];
-    uint32_t u;
-    float f;
-    read_regs(fd, addr, 4, b);
-    u = (uint32_t)b[0] | (uint32_t)b[1] << 8 | (uint32_t)b[2] << 16 | (uint32_t)b[3] << 24;
-    memcpy(&f, &u, sizeof f);
-    return f;
 }
 
 static void load_state_file(xgo_board_nv_t *nv)
@@ -820,65 +808,6 @@ static void test_non_regular_state_file_is_refused_at_once(void)
     TEST_ASSERT_TRUE(S_ISFIFO(st.st_mode)); /* left as it was */
 }
 
-static void test_ground_tilt_misuse_exits_2(void)
-{
-    static const char *const bad[] = {"",      "5",      "5,",      ",5",     "a,b",
-                                      "46,0",  "0,-45.001", "5;3",  "5,3,1",  "1e1,0",
-                                      "nan,0", " 5,3",   "5,3 ",    "5.,3",   ".5,3",
-                                      "--5,3", "0x10,0", "99999999999999999999,0"};
-    size_t i;
-    char err[4096];
-    for (i = 0; i < sizeof bad / sizeof bad[0]; i++) {
-        const char *args[] = {"--ground-tilt", bad[i], NULL};
-        const char *nl;
-        TEST_ASSERT_EQUAL_INT_MESSAGE(2, emu_run_to_exit(args, err, sizeof err), bad[i]);
-        TEST_ASSERT_EQUAL_INT_MESSAGE(0, strncmp(err, "xgo-emu: --ground-tilt must be", 30), err);
-        nl = strchr(err, '\n');
-        TEST_ASSERT_NOT_NULL(nl);
-        /* the usage starts right after the first line (strstr keeps GCC's
-         * -Wstringop-overread quiet in Release builds) */
-        TEST_ASSERT_TRUE_MESSAGE(strstr(err, "\nusage: xgo-emu") == nl, err);
-    }
-}
-
-/* The IMU reads the ground's tilt; self-stabilisation (0x61 = 1) levels the
- * body so it reads about zero. Decimals reach the board exactly. */
-static void test_ground_tilt_and_self_levelling(void)
-{
-    const char *args[] = {"--ground-tilt", "10,-4", NULL};
-    const char *args_fine[] = {"--ground-tilt=-2.5,7.125", NULL};
-    float roll, pitch;
-
-    emu_start(args);
-    g_port = port_open();
-    xgo_test_sleep_us(100000);
-    roll = read_angle(g_port, 0x62);
-    pitch = read_angle(g_port, 0x63);
-    TEST_ASSERT_FLOAT_WITHIN(0.2f, 10.0f, roll);
-    TEST_ASSERT_FLOAT_WITHIN(0.2f, -4.0f, pitch);
-    write_reg(g_port, 0x61, 1);
-    xgo_test_sleep_us(1200000);
-    roll = read_angle(g_port, 0x62);
-    pitch = read_angle(g_port, 0x63);
-    TEST_ASSERT_FLOAT_WITHIN(1.0f, 0.0f, roll);
-    TEST_ASSERT_FLOAT_WITHIN(1.0f, 0.0f, pitch);
-    write_reg(g_port, 0x61, 0); /* and back onto the slope */
-    xgo_test_sleep_us(1200000);
-    TEST_ASSERT_FLOAT_WITHIN(0.5f, 10.0f, read_angle(g_port, 0x62));
-    close(g_port);
-    g_port = -1;
-    emu_stop();
-
-    emu_start(args_fine);
-    g_port = port_open();
-    xgo_test_sleep_us(50000);
-    TEST_ASSERT_FLOAT_WITHIN(0.01f, -2.5f, read_angle(g_port, 0x62));
-    TEST_ASSERT_FLOAT_WITHIN(0.01f, 7.125f, read_angle(g_port, 0x63));
-    close(g_port);
-    g_port = -1;
-    emu_stop();
-}
-
 int main(void)
 {
     signal(SIGPIPE, SIG_IGN);
@@ -898,7 +827,5 @@ int main(void)
     RUN_TEST(test_planted_file_at_the_temporary_name_is_not_adopted);
     RUN_TEST(test_bad_state_file_refuses_to_start);
     RUN_TEST(test_non_regular_state_file_is_refused_at_once);
-    RUN_TEST(test_ground_tilt_misuse_exits_2);
-    RUN_TEST(test_ground_tilt_and_self_levelling);
     return UNITY_END();
 }

@@ -752,6 +752,70 @@ static void test_profile_and_battery_options_reach_the_board(void)
     emu_stop_cleanly(SIGTERM);
 }
 
+/* A 4-byte IMU read: float32 little-endian degrees. */
+static float read_angle(int fd, uint8_t addr)
+{
+    uint8_t b[4];
+    uint32_t u;
+    float f;
+    read_regs(fd, addr, 4, b);
+    u = (uint32_t)b[0] | (uint32_t)b[1] << 8 | (uint32_t)b[2] << 16 | (uint32_t)b[3] << 24;
+    memcpy(&f, &u, sizeof f);
+    return f;
+}
+
+static void test_ground_tilt_misuse_exits_2(void)
+{
+    static const char *const bad[] = {"",      "5",      "5,",      ",5",     "a,b",
+                                      "46,0",  "0,-45.001", "5;3",  "5,3,1",  "1e1,0",
+                                      "nan,0", " 5,3",   "5,3 ",    "5.,3",   ".5,3",
+                                      "--5,3", "0x10,0", "99999999999999999999,0"};
+    size_t i;
+    for (i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        const char *args[] = {"--ground-tilt", bad[i], NULL};
+        assert_misuse(args);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(0, strncmp(g_emu.err, "xgo-emu: --ground-tilt must be", 30),
+                                      g_emu.err);
+        xgo_test_emu_reset(&g_emu);
+    }
+}
+
+/* The IMU reads the ground's tilt; self-stabilisation (0x61 = 1) levels the
+ * body so it reads about zero. Decimals reach the board exactly. */
+static void test_ground_tilt_and_self_levelling(void)
+{
+    const uint8_t on = 1, off = 0;
+    float roll, pitch;
+
+    emu_start_linked("--ground-tilt", "10,-4");
+    g_port = port_open_like_pyserial(g_link, B115200);
+    xgo_test_sleep_us(100000);
+    roll = read_angle(g_port, 0x62);
+    pitch = read_angle(g_port, 0x63);
+    TEST_ASSERT_FLOAT_WITHIN(0.2f, 10.0f, roll);
+    TEST_ASSERT_FLOAT_WITHIN(0.2f, -4.0f, pitch);
+    write_regs(g_port, 0x61, &on, 1);
+    xgo_test_sleep_us(1200000);
+    roll = read_angle(g_port, 0x62);
+    pitch = read_angle(g_port, 0x63);
+    TEST_ASSERT_FLOAT_WITHIN(1.0f, 0.0f, roll);
+    TEST_ASSERT_FLOAT_WITHIN(1.0f, 0.0f, pitch);
+    write_regs(g_port, 0x61, &off, 1); /* and back onto the slope */
+    xgo_test_sleep_us(1200000);
+    TEST_ASSERT_FLOAT_WITHIN(0.5f, 10.0f, read_angle(g_port, 0x62));
+    close(g_port);
+    g_port = -1;
+    emu_stop_cleanly(SIGTERM);
+    xgo_test_emu_reset(&g_emu);
+
+    emu_start_linked("--ground-tilt=-2.5,7.125", NULL);
+    g_port = port_open_like_pyserial(g_link, B115200);
+    xgo_test_sleep_us(50000);
+    TEST_ASSERT_FLOAT_WITHIN(0.01f, -2.5f, read_angle(g_port, 0x62));
+    TEST_ASSERT_FLOAT_WITHIN(0.01f, 7.125f, read_angle(g_port, 0x63));
+    emu_stop_cleanly(SIGTERM);
+}
+
 /* A partial frame followed by silence is abandoned after --timeout-ms (the
  * loop polls the board on its own, without new bytes), not before. */
 static void test_silence_timeout_follows_the_option(void)
@@ -829,6 +893,8 @@ int main(void)
     RUN_TEST(test_trace_prints_one_line_per_frame);
     RUN_TEST(test_counters_are_printed_at_exit);
     RUN_TEST(test_profile_and_battery_options_reach_the_board);
+    RUN_TEST(test_ground_tilt_misuse_exits_2);
+    RUN_TEST(test_ground_tilt_and_self_levelling);
     RUN_TEST(test_silence_timeout_follows_the_option);
     rc = UNITY_END();
 
