@@ -229,6 +229,70 @@ static void test_unknown_types_rejected(void)
     }
 }
 
+/* A host-side parser (xgo-cli) takes the board's replies and nothing else;
+ * an offline one (xgo-cli decode) both directions. */
+static void init_side(xgo_parser_side_t side)
+{
+    xgo_parser_sink_t sink;
+    memset(&rec, 0, sizeof rec);
+    sink.on_frame = on_frame;
+    sink.on_drop = on_drop;
+    sink.ctx = &rec;
+    xgo_parser_init_side(&parser, &sink, XGO_PARSER_DEFAULT_TIMEOUT_MS, side);
+}
+
+static void test_host_side_parses_replies_only(void)
+{
+    init_side(XGO_PARSER_HOST);
+    feed(k_spec_reply, sizeof k_spec_reply);
+    TEST_ASSERT_EQUAL_UINT(1, rec.n_frames);
+    TEST_ASSERT_EQUAL_HEX8(XGO_TYPE_READ_REPLY, rec.frames[0].type);
+    TEST_ASSERT_EQUAL_HEX8(0x50, rec.frames[0].addr);
+    TEST_ASSERT_EQUAL_UINT8(12, rec.frames[0].len);
+    TEST_ASSERT_EACH_EQUAL_HEX8(0x80, rec.frames[0].data, 12);
+    feed(k_spec_write, sizeof k_spec_write);
+    feed(k_spec_read, sizeof k_spec_read);
+    TEST_ASSERT_EQUAL_UINT(1, rec.n_frames);
+    TEST_ASSERT_EQUAL_UINT32(2, parser.stats.bad_type);
+    TEST_ASSERT_EQUAL_UINT32(1, parser.stats.frames_ok);
+}
+
+static void test_board_side_is_the_default(void)
+{
+    init_side(XGO_PARSER_BOARD);
+    feed(k_spec_reply, sizeof k_spec_reply);
+    feed(k_spec_write, sizeof k_spec_write);
+    TEST_ASSERT_EQUAL_UINT(1, rec.n_frames);
+    TEST_ASSERT_EQUAL_HEX8(XGO_TYPE_WRITE, rec.frames[0].type);
+    TEST_ASSERT_EQUAL_UINT32(1, parser.stats.bad_type);
+    TEST_ASSERT_EQUAL_UINT8(XGO_PARSER_BOARD, parser.side);
+}
+
+static void test_any_side_parses_both_directions(void)
+{
+    init_side(XGO_PARSER_ANY);
+    feed(k_spec_read, sizeof k_spec_read);
+    feed(k_spec_reply, sizeof k_spec_reply);
+    feed(k_spec_write, sizeof k_spec_write);
+    TEST_ASSERT_EQUAL_UINT(3, rec.n_frames);
+    TEST_ASSERT_EQUAL_HEX8(XGO_TYPE_READ, rec.frames[0].type);
+    TEST_ASSERT_EQUAL_HEX8(XGO_TYPE_READ_REPLY, rec.frames[1].type);
+    TEST_ASSERT_EQUAL_HEX8(XGO_TYPE_WRITE, rec.frames[2].type);
+    TEST_ASSERT_EQUAL_UINT32(0, parser.stats.bad_type);
+}
+
+/* A reply whose data would run past 0xFF is as meaningless as such a write. */
+static void test_host_side_reply_range_checked(void)
+{
+    uint8_t frame[16];
+    static const uint8_t data[4] = {1, 2, 3, 4};
+    size_t n = xgo_frame_encode(XGO_TYPE_READ_REPLY, 0xFE, data, sizeof data, frame, sizeof frame);
+    init_side(XGO_PARSER_HOST);
+    feed(frame, n);
+    TEST_ASSERT_EQUAL_UINT(0, rec.n_frames);
+    TEST_ASSERT_EQUAL_UINT32(1, parser.stats.bad_range);
+}
+
 static void expect_range_rejected(uint8_t type, uint8_t addr, const uint8_t *data, size_t n)
 {
     uint8_t f[XGO_FRAME_MAX_LEN];
@@ -535,5 +599,9 @@ int main(void)
     RUN_TEST(test_split_delivery_gives_identical_results);
     RUN_TEST(test_pure_noise_is_bounded_and_counted);
     RUN_TEST(test_drop_reason_names);
+    RUN_TEST(test_host_side_parses_replies_only);
+    RUN_TEST(test_board_side_is_the_default);
+    RUN_TEST(test_any_side_parses_both_directions);
+    RUN_TEST(test_host_side_reply_range_checked);
     return UNITY_END();
 }

@@ -94,17 +94,31 @@ typedef struct xgo_parser_sink_s {
     void *ctx;
 } xgo_parser_sink_t;
 
+/* Which frames a parser takes: the board parses the host's requests (TYPE
+ * 0x00, 0x01, 0x02), a host-side tool the board's replies (TYPE 0x12), an
+ * offline decoder of a mixed byte stream both. Other types are bad types. */
+typedef enum xgo_parser_side_e {
+    XGO_PARSER_BOARD = 0,
+    XGO_PARSER_HOST = 1,
+    XGO_PARSER_ANY = 2
+} xgo_parser_side_t;
+
 typedef struct xgo_parser_s {
     uint8_t buf[XGO_FRAME_MAX_LEN];
     uint16_t end;        /* bytes held */
     uint16_t checked;    /* prefix of buf already validated as a frame candidate */
     uint32_t last_rx_ms; /* time of the last byte fed */
     uint32_t timeout_ms; /* 0 disables the silence timeout */
+    uint8_t side;        /* xgo_parser_side_t */
     xgo_parser_sink_t sink;
     xgo_parser_stats_t stats;
 } xgo_parser_t;
 
+/* A parser on the board's side (host requests). */
 void xgo_parser_init(xgo_parser_t *p, const xgo_parser_sink_t *sink, uint32_t timeout_ms);
+/* The same on the given side (xgo-cli parses replies with XGO_PARSER_HOST). */
+void xgo_parser_init_side(xgo_parser_t *p, const xgo_parser_sink_t *sink, uint32_t timeout_ms,
+                          xgo_parser_side_t side);
 
 /* Feed bytes that arrived at time now_ms (any clock in ms, wrap-safe). First
  * applies the silence timeout relative to the previous byte. */

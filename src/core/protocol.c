@@ -64,13 +64,20 @@ size_t xgo_frame_encode(uint8_t type, uint8_t addr, const uint8_t *data, size_t 
     return total;
 }
 
-void xgo_parser_init(xgo_parser_t *p, const xgo_parser_sink_t *sink, uint32_t timeout_ms)
+void xgo_parser_init_side(xgo_parser_t *p, const xgo_parser_sink_t *sink, uint32_t timeout_ms,
+                          xgo_parser_side_t side)
 {
     memset(p, 0, sizeof *p);
     if (sink != NULL) {
         p->sink = *sink;
     }
     p->timeout_ms = timeout_ms;
+    p->side = (uint8_t)side;
+}
+
+void xgo_parser_init(xgo_parser_t *p, const xgo_parser_sink_t *sink, uint32_t timeout_ms)
+{
+    xgo_parser_init_side(p, sink, timeout_ms, XGO_PARSER_BOARD);
 }
 
 size_t xgo_parser_pending(const xgo_parser_t *p)
@@ -112,9 +119,16 @@ static void reject(xgo_parser_t *p, xgo_drop_reason_t reason)
     consume(p, 1);
 }
 
-static int type_valid(uint8_t type)
+static int type_valid(const xgo_parser_t *p, uint8_t type)
 {
-    return type == XGO_TYPE_WRITE || type == XGO_TYPE_WRITE_LEGACY || type == XGO_TYPE_READ;
+    const int request = type == XGO_TYPE_WRITE || type == XGO_TYPE_WRITE_LEGACY ||
+                        type == XGO_TYPE_READ;
+    const int reply = type == XGO_TYPE_READ_REPLY;
+    switch (p->side) {
+    case XGO_PARSER_HOST: return reply;
+    case XGO_PARSER_ANY: return request || reply;
+    default: return request;
+    }
 }
 
 /* A complete, well-formed frame: checked for range, then delivered. */
@@ -191,7 +205,7 @@ static void scan(xgo_parser_t *p)
             }
             break;
         case POS_TYPE:
-            if (!type_valid(byte)) {
+            if (!type_valid(p, byte)) {
                 reject(p, XGO_DROP_BAD_TYPE);
             } else if (byte == XGO_TYPE_READ && p->buf[POS_LEN] != XGO_READ_REQUEST_LEN) {
                 reject(p, XGO_DROP_BAD_LENGTH);
