@@ -354,6 +354,85 @@ static void test_hangup_discards_the_partial_frame(void)
     TEST_ASSERT_NOT_NULL_MESSAGE(strstr(g_emu.err, "  hangup_discards        1\n"), g_emu.err);
 }
 
+/* ------------------------------------ 6. --trace shows every rejected byte */
+
+/* The sum of n= over all "drop noise n=" lines, and their number. */
+static unsigned long noise_in_trace(const char *err, int *lines)
+{
+    unsigned long total = 0;
+    const char *p = err;
+    *lines = 0;
+    while ((p = strstr(p, " drop noise n=")) != NULL) {
+        p += strlen(" drop noise n=");
+        total += strtoul(p, NULL, 10);
+        (*lines)++;
+    }
+    return total;
+}
+
+/* Noise without a 55 00 header: counted in bytes_discarded and traced, the
+ * first bytes shown; a bad checksum shows the one expected. */
+static void test_trace_shows_noise_and_the_expected_checksum(void)
+{
+    static const char text[] = "hello, this is a terminal talking to the wrong port; "
+                                "none of it is a frame at all!!..."; /* 86 bytes, no 0x55 */
+    static const uint8_t bad_sum[] = {0x55, 0x00, 0x09, 0x02, 0x50, 0x0C, 0x99, 0x00, 0xAA};
+    uint32_t c[XGO_DIAG_COUNT];
+    uint8_t vx;
+    int lines;
+    TEST_ASSERT_EQUAL_UINT(86, sizeof text - 1);
+    emu_start("--trace", NULL);
+    g_port = port_open();
+    port_write(g_port, (const uint8_t *)text, sizeof text - 1);
+    read_regs(g_port, XGO_REG_VX, 1, &vx); /* still answered after the noise */
+    port_write(g_port, bad_sum, sizeof bad_sum);
+    read_counters(g_port, c);
+    /* The bad frame: its 0x55 is dropped, the 8 bytes after it are searched
+     * again for a header and skipped as noise. */
+    TEST_ASSERT_EQUAL_UINT32(86 + 1 + 8, c[XGO_DIAG_BYTES_DISCARDED]);
+    emu_stop();
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(g_emu.err, " drop noise n=86 [68 65 6C 6C 6F 2C 20 74 "),
+                                 g_emu.err);
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(g_emu.err, " drop noise n=8 [00 09 02 50 0C 99 00 AA]\n"),
+                                 g_emu.err);
+    TEST_ASSERT_EQUAL_UINT32(86 + 8, noise_in_trace(g_emu.err, &lines));
+    TEST_ASSERT_NOT_NULL_MESSAGE(
+        strstr(g_emu.err, " drop bad checksum [55 00 09 02 50 0C 99 00 AA] checksum 99, expected 98\n"),
+        g_emu.err);
+}
+
+/* A flood of noise cannot drown stderr: at most one noise line per 10 ms,
+ * and together the lines still account for every byte. */
+static void test_noise_flood_is_traced_in_bounded_lines(void)
+{
+    enum { WRITES = 400, EACH = 50 };
+    uint8_t noise[EACH];
+    unsigned long total;
+    long long t0, elapsed;
+    int i, lines;
+    for (i = 0; i < EACH; i++) {
+        noise[i] = (uint8_t)('a' + i % 26);
+    }
+    emu_start("--trace", NULL);
+    g_port = port_open();
+    t0 = xgo_test_now_ms();
+    for (i = 0; i < WRITES; i++) {
+        port_write(g_port, noise, sizeof noise);
+        if (i % 40 == 0) {
+            xgo_test_sleep_ms(3);
+        }
+    }
+    xgo_test_sleep_ms(50);
+    emu_stop();
+    elapsed = xgo_test_now_ms() - t0;
+    total = noise_in_trace(g_emu.err, &lines);
+    printf("noise flood: %d bytes in %lld ms traced in %d lines\n", WRITES * EACH, elapsed, lines);
+    TEST_ASSERT_EQUAL_UINT32(WRITES * EACH, total);
+    /* one line per 10 ms, plus the rest flushed at exit */
+    TEST_ASSERT_TRUE_MESSAGE(lines <= elapsed / 10 + 2, "more than one noise line per 10 ms");
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(g_emu.err, "  bytes_discarded        20000\n"), g_emu.err);
+}
+
 int main(void)
 {
     int rc;
@@ -369,6 +448,8 @@ int main(void)
     RUN_TEST(test_stalled_emulator_loses_no_request);
     RUN_TEST(test_slow_reader_loses_no_request_and_no_write);
     RUN_TEST(test_hangup_discards_the_partial_frame);
+    RUN_TEST(test_trace_shows_noise_and_the_expected_checksum);
+    RUN_TEST(test_noise_flood_is_traced_in_bounded_lines);
     rc = UNITY_END();
 
     rmdir(g_dir);

@@ -20,8 +20,10 @@ typedef struct {
 typedef struct {
     seen_frame_t frames[MAX_FRAMES];
     size_t n_frames;
-    xgo_drop_reason_t drops[MAX_FRAMES];
+    xgo_drop_reason_t drops[MAX_FRAMES]; /* rejections, not noise */
     size_t n_drops;
+    size_t noise_bytes; /* reported as noise */
+    uint8_t noise[16];  /* the first of them */
 } recorder_t;
 
 static recorder_t rec;
@@ -43,8 +45,14 @@ static void on_frame(void *ctx, const xgo_frame_t *f)
 static void on_drop(void *ctx, xgo_drop_reason_t why, const uint8_t *bytes, size_t n)
 {
     recorder_t *r = (recorder_t *)ctx;
-    (void)bytes;
-    (void)n;
+    if (why == XGO_DROP_NOISE) {
+        size_t i;
+        for (i = 0; i < n && r->noise_bytes + i < sizeof r->noise; i++) {
+            r->noise[r->noise_bytes + i] = bytes[i];
+        }
+        r->noise_bytes += n;
+        return;
+    }
     if (r->n_drops < MAX_FRAMES) {
         r->drops[r->n_drops] = why;
     }
@@ -559,6 +567,26 @@ static void test_pure_noise_is_bounded_and_counted(void)
      * or still pending, and the held bytes never exceed one frame. */
     TEST_ASSERT_EQUAL_UINT(0, rec.n_frames);
     TEST_ASSERT_EQUAL_UINT32(100000, parser.stats.bytes_discarded + xgo_parser_pending(&parser));
+    /* Every byte skipped while hunting was reported as noise; the rest of
+     * bytes_discarded is one byte per rejected candidate. */
+    TEST_ASSERT_EQUAL_UINT32(parser.stats.bytes_discarded,
+                             rec.noise_bytes + parser.stats.bad_checksum + parser.stats.bad_tail +
+                                 parser.stats.bad_length + parser.stats.bad_type);
+    TEST_ASSERT_EQUAL_UINT32(0, parser.stats.bad_range);
+}
+
+/* Bytes before a header are reported as noise, exactly those. */
+static void test_noise_is_reported_with_its_bytes(void)
+{
+    const uint8_t noise[] = {'h', 'i', 0x0D, 0x0A, 0x55, 0x13};
+    feed(noise, sizeof noise);
+    feed(k_spec_read, sizeof k_spec_read);
+    TEST_ASSERT_EQUAL_UINT(1, rec.n_frames);
+    TEST_ASSERT_EQUAL_UINT(0, rec.n_drops);
+    TEST_ASSERT_EQUAL_UINT(sizeof noise, rec.noise_bytes);
+    TEST_ASSERT_EQUAL_HEX8_ARRAY(noise, rec.noise, sizeof noise);
+    TEST_ASSERT_EQUAL_UINT32(sizeof noise, parser.stats.bytes_discarded);
+    TEST_ASSERT_EQUAL_STRING("noise", xgo_drop_reason_name(XGO_DROP_NOISE));
 }
 
 static void test_drop_reason_names(void)
@@ -594,6 +622,7 @@ int main(void)
     RUN_TEST(test_timeout_zero_disables_it);
     RUN_TEST(test_timeout_survives_clock_wrap);
     RUN_TEST(test_hangup_drops_the_partial_frame);
+    RUN_TEST(test_noise_is_reported_with_its_bytes);
     RUN_TEST(test_header_bytes_repeated_do_not_hide_frame);
     RUN_TEST(test_random_garbage_never_hides_valid_frames);
     RUN_TEST(test_split_delivery_gives_identical_results);

@@ -68,6 +68,8 @@ typedef enum xgo_drop_reason_e {
     XGO_DROP_BAD_VALUE,   /* write value outside the register's valid set */
     XGO_DROP_TX_OVERFLOW, /* reply did not fit the transmit buffer */
     XGO_DROP_HANGUP,      /* partial frame of a host that hung up */
+    XGO_DROP_NOISE,       /* bytes skipped while looking for a 55 00 header (no counter
+                           * of its own: they are in bytes_discarded) */
     XGO_DROP_REASON_COUNT
 } xgo_drop_reason_t;
 
@@ -87,7 +89,9 @@ typedef struct xgo_parser_stats_s {
 } xgo_parser_stats_t;
 
 /* Callbacks; any may be NULL. `on_drop` sees the bytes of the rejected
- * candidate (for a timeout: all bytes that were pending). */
+ * candidate (for a timeout or a hang-up: all bytes that were pending; for
+ * noise: the bytes skipped before a possible header - after a rejection,
+ * the rest of the candidate is searched again and may be skipped so). */
 typedef struct xgo_parser_sink_s {
     void (*on_frame)(void *ctx, const xgo_frame_t *frame);
     void (*on_drop)(void *ctx, xgo_drop_reason_t reason, const uint8_t *bytes, size_t n);

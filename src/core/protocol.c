@@ -30,6 +30,7 @@ const char *xgo_drop_reason_name(xgo_drop_reason_t reason)
     case XGO_DROP_BAD_VALUE: return "value not allowed";
     case XGO_DROP_TX_OVERFLOW: return "transmit buffer full";
     case XGO_DROP_HANGUP: return "hang-up";
+    case XGO_DROP_NOISE: return "noise";
     case XGO_DROP_REASON_COUNT: break;
     }
     return "unknown";
@@ -119,6 +120,17 @@ static void reject(xgo_parser_t *p, xgo_drop_reason_t reason)
     consume(p, 1);
 }
 
+/* Bytes before any header: no frame was claimed. Reported (reason noise)
+ * so a trace can show every byte that was thrown away. */
+static void drop_noise(xgo_parser_t *p, size_t n)
+{
+    if (p->sink.on_drop != NULL) {
+        p->sink.on_drop(p->sink.ctx, XGO_DROP_NOISE, p->buf, n);
+    }
+    p->stats.bytes_discarded += (uint32_t)n;
+    consume(p, n);
+}
+
 static int type_valid(const xgo_parser_t *p, uint8_t type)
 {
     const int request = type == XGO_TYPE_WRITE || type == XGO_TYPE_WRITE_LEGACY ||
@@ -188,15 +200,13 @@ static void scan(xgo_parser_t *p)
                 while (skip < p->end && p->buf[skip] != XGO_FRAME_HEAD0) {
                     skip++;
                 }
-                p->stats.bytes_discarded += (uint32_t)skip;
-                consume(p, skip);
+                drop_noise(p, skip);
             }
             break;
         case POS_HEAD1:
             if (byte != XGO_FRAME_HEAD1) {
                 /* Not a header after all: no frame was claimed, just noise. */
-                p->stats.bytes_discarded++;
-                consume(p, 1);
+                drop_noise(p, 1);
             }
             break;
         case POS_LEN:

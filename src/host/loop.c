@@ -384,6 +384,9 @@ int xgo_host_loop_run(xgo_host_loop_t *l)
         if (!l->host_gone) {
             xgo_host_loop_write(l, now);
         }
+        if (l->trace != NULL) {
+            xgo_host_trace_tick(l->trace, now); /* folded noise, rate-bounded */
+        }
 
         pfd.fd = l->host_gone ? -1 : l->pty->master_fd; /* negative fd: ignored */
         pfd.events = (short)((l->in_len == 0 ? POLLIN : 0) | (l->out_blocked ? POLLOUT : 0));

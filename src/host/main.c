@@ -126,6 +126,9 @@ int main(int argc, char **argv)
     if (opts.state_path != NULL && xgo_host_state_close(&state, &board, stderr) != 0) {
         rc = -1;
     }
+    if (opts.trace) {
+        xgo_host_trace_flush(&trace); /* noise folded since the last line */
+    }
     xgo_host_loop_print_counters(&loop, stderr);
     if (opts.link_path != NULL) {
         xgo_host_link_remove_if_ours(opts.link_path, pty.slave_path);

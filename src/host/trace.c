@@ -166,23 +166,53 @@ static void xgo_host_line_reply_meaning(xgo_host_line_t *l, const xgo_frame_t *f
 
 void xgo_host_trace_init(xgo_host_trace_t *t, FILE *out, uint64_t origin_us)
 {
+    memset(t, 0, sizeof *t);
     t->out = out;
     t->origin_us = origin_us;
     t->now_us = origin_us;
+}
+
+/* "   1.234567 ": seconds since start. */
+static void xgo_host_line_time(xgo_host_line_t *l, const xgo_host_trace_t *t, uint64_t at_us)
+{
+    uint64_t since = at_us >= t->origin_us ? at_us - t->origin_us : 0;
+    xgo_host_line_add(l, "%4lu.%06lu ", (unsigned long)(since / 1000000u),
+                      (unsigned long)(since % 1000000u));
+}
+
+/* "drop noise n=86 [68 65 6C ... ...]": the first bytes, "..." for more. */
+static void xgo_host_line_noise(xgo_host_line_t *l, const uint8_t *head, size_t shown,
+                                unsigned long n)
+{
+    xgo_host_line_add(l, "drop %s n=%lu ", xgo_drop_reason_name(XGO_DROP_NOISE), n);
+    xgo_host_line_hex(l, head, shown);
+    if (n > shown) {
+        l->len--; /* reopen the bracket */
+        xgo_host_line_add(l, " ...]");
+    }
+}
+
+/* A bad checksum: which one the frame's bytes call for. */
+static void xgo_host_line_checksum(xgo_host_line_t *l, const uint8_t *raw, size_t n)
+{
+    if (n < XGO_FRAME_OVERHEAD + 1u || raw[2] != n) {
+        return;
+    }
+    xgo_host_line_add(l, " checksum %02X, expected %02X", raw[n - 3],
+                      xgo_frame_checksum(raw[2], raw[3], raw[4], raw + 5,
+                                         n - XGO_FRAME_OVERHEAD));
 }
 
 void xgo_host_trace_format(const xgo_host_trace_t *t, const xgo_trace_event_t *ev, char *line,
                            size_t line_size)
 {
     xgo_host_line_t l;
-    uint64_t since = t->now_us >= t->origin_us ? t->now_us - t->origin_us : 0;
 
     l.buf = line;
     l.size = line_size;
     l.len = 0;
     line[0] = '\0';
-    xgo_host_line_add(&l, "%4lu.%06lu ", (unsigned long)(since / 1000000u),
-                      (unsigned long)(since % 1000000u));
+    xgo_host_line_time(&l, t, t->now_us);
 
     switch (ev->kind) {
     case XGO_TRACE_RX:
@@ -206,6 +236,13 @@ void xgo_host_trace_format(const xgo_host_trace_t *t, const xgo_trace_event_t *e
         xgo_host_line_reply_meaning(&l, ev->frame);
         break;
     case XGO_TRACE_DROP:
+        if (ev->reason == XGO_DROP_NOISE) {
+            xgo_host_line_noise(&l, ev->raw,
+                                ev->raw_len < XGO_HOST_TRACE_NOISE_SHOWN ? ev->raw_len
+                                                                         : XGO_HOST_TRACE_NOISE_SHOWN,
+                                (unsigned long)ev->raw_len);
+            break;
+        }
         xgo_host_line_add(&l, "drop %s", xgo_drop_reason_name(ev->reason));
         if (ev->frame != NULL) {
             xgo_host_line_add(&l, ": ");
@@ -215,20 +252,76 @@ void xgo_host_trace_format(const xgo_host_trace_t *t, const xgo_trace_event_t *e
             xgo_host_line_add(&l, " ");
             xgo_host_line_hex(&l, ev->raw, ev->raw_len);
         }
+        if (ev->reason == XGO_DROP_BAD_CHECKSUM && ev->raw != NULL) {
+            xgo_host_line_checksum(&l, ev->raw, ev->raw_len);
+        }
         break;
     }
 }
 
+/* One fwrite per line on the unbuffered stderr: lines from one process
+ * never interleave mid-line. */
+static void xgo_host_trace_put(const xgo_host_trace_t *t, char *line, size_t size)
+{
+    size_t n = strlen(line);
+    if (n + 1 < size) {
+        line[n++] = '\n';
+    }
+    fwrite(line, 1, n, t->out);
+}
+
+void xgo_host_trace_flush(xgo_host_trace_t *t)
+{
+    char line[256];
+    xgo_host_line_t l;
+    size_t shown = t->noise_bytes < XGO_HOST_TRACE_NOISE_SHOWN ? t->noise_bytes
+                                                               : XGO_HOST_TRACE_NOISE_SHOWN;
+    if (t->noise_bytes == 0) {
+        return;
+    }
+    l.buf = line;
+    l.size = sizeof line;
+    l.len = 0;
+    line[0] = '\0';
+    xgo_host_line_time(&l, t, t->noise_since_us);
+    xgo_host_line_noise(&l, t->noise_head, shown, (unsigned long)t->noise_bytes);
+    xgo_host_trace_put(t, line, sizeof line);
+    t->noise_bytes = 0;
+    t->noise_line_us = t->now_us;
+    t->noise_printed = 1;
+}
+
+void xgo_host_trace_tick(xgo_host_trace_t *t, uint64_t now_us)
+{
+    if (t->noise_bytes > 0 &&
+        (!t->noise_printed || now_us - t->noise_line_us >= XGO_HOST_TRACE_NOISE_US)) {
+        t->now_us = now_us;
+        xgo_host_trace_flush(t);
+    }
+}
+
+static void xgo_host_trace_fold_noise(xgo_host_trace_t *t, const uint8_t *bytes, size_t n)
+{
+    size_t i;
+    if (t->noise_bytes == 0) {
+        t->noise_since_us = t->now_us;
+    }
+    for (i = 0; i < n && t->noise_bytes + i < XGO_HOST_TRACE_NOISE_SHOWN; i++) {
+        t->noise_head[t->noise_bytes + i] = bytes[i];
+    }
+    t->noise_bytes += (uint32_t)n;
+}
+
 void xgo_host_trace_event(void *ctx, const xgo_trace_event_t *ev)
 {
-    const xgo_host_trace_t *t = ctx;
+    xgo_host_trace_t *t = ctx;
     /* Long enough for a 255-byte frame in hex plus its decoding. */
     char line[4096];
-    size_t n;
-    xgo_host_trace_format(t, ev, line, sizeof line - 1);
-    n = strlen(line);
-    line[n++] = '\n';
-    /* One fwrite per line on the unbuffered stderr: lines from one process
-     * never interleave mid-line. */
-    fwrite(line, 1, n, t->out);
+    if (ev->kind == XGO_TRACE_DROP && ev->reason == XGO_DROP_NOISE) {
+        xgo_host_trace_fold_noise(t, ev->raw, ev->raw_len);
+        return;
+    }
+    xgo_host_trace_flush(t); /* the noise came first */
+    xgo_host_trace_format(t, ev, line, sizeof line);
+    xgo_host_trace_put(t, line, sizeof line);
 }
