@@ -179,54 +179,6 @@ static void assert_within_limits(const xgo_profile_t *p, const int32_t q[3])
 
 /* ------------------------------------------------------------ profiles */
 
-static void test_profiles_and_numbering(void)
-{
-    const xgo_profile_t *m = xgo_profile_mini(), *l = xgo_profile_lite();
-    int leg, j;
-    TEST_ASSERT_EQUAL_PTR(m, xgo_profile_get(XGO_PROFILE_MINI));
-    TEST_ASSERT_EQUAL_PTR(l, xgo_profile_get(XGO_PROFILE_LITE));
-    TEST_ASSERT_EQUAL_PTR(m, xgo_profile_get(7));
-    TEST_ASSERT_EQUAL_STRING("mini", m->name);
-    TEST_ASSERT_EQUAL_STRING("lite", l->name);
-    /* vendor library ranges */
-    TEST_ASSERT_EQUAL_INT32(-73000, m->joint_mdeg[XGO_JOINT_KNEE].lo);
-    TEST_ASSERT_EQUAL_INT32(57000, m->joint_mdeg[XGO_JOINT_KNEE].hi);
-    TEST_ASSERT_EQUAL_INT32(-66000, m->joint_mdeg[XGO_JOINT_HIP].lo);
-    TEST_ASSERT_EQUAL_INT32(93000, m->joint_mdeg[XGO_JOINT_HIP].hi);
-    TEST_ASSERT_EQUAL_INT32(31000, m->joint_mdeg[XGO_JOINT_ABAD].hi);
-    TEST_ASSERT_EQUAL_INT32(75000, m->foot_um[XGO_AXIS_Z].lo);
-    TEST_ASSERT_EQUAL_INT32(115000, m->foot_um[XGO_AXIS_Z].hi);
-    TEST_ASSERT_EQUAL_INT32(19500, m->body_um[XGO_AXIS_Y].hi);
-    TEST_ASSERT_EQUAL_INT32(-70000, l->joint_mdeg[XGO_JOINT_KNEE].lo);
-    TEST_ASSERT_EQUAL_INT32(90000, l->joint_mdeg[XGO_JOINT_HIP].hi);
-    TEST_ASSERT_EQUAL_INT32(10000, l->body_mdeg[1].hi);
-    TEST_ASSERT_EQUAL_INT32(59900, m->thigh_um);
-    TEST_ASSERT_EQUAL_INT32(30988, m->abad_offset_um);
-    /* every range is well formed, the stand height inside the body range */
-    for (j = 0; j < 3; ++j) {
-        TEST_ASSERT_TRUE(m->joint_mdeg[j].lo < m->joint_mdeg[j].hi);
-        TEST_ASSERT_TRUE(l->foot_um[j].lo < l->foot_um[j].hi);
-        TEST_ASSERT_TRUE(m->body_mdeg[j].lo < m->body_mdeg[j].hi);
-    }
-    TEST_ASSERT_TRUE(m->stand_height_um > m->body_um[2].lo && m->stand_height_um < m->body_um[2].hi);
-    TEST_ASSERT_TRUE(l->stand_height_um > l->body_um[2].lo && l->stand_height_um < l->body_um[2].hi);
-    /* numbering agrees with the register table */
-    TEST_ASSERT_EQUAL_UINT(XGO_REG_LEG1_X, XGO_FOOT_REG(XGO_LEG_LF, XGO_AXIS_X));
-    TEST_ASSERT_EQUAL_UINT(XGO_REG_LEG2_Y, XGO_FOOT_REG(XGO_LEG_RF, XGO_AXIS_Y));
-    TEST_ASSERT_EQUAL_UINT(XGO_REG_LEG3_Z, XGO_FOOT_REG(XGO_LEG_RH, XGO_AXIS_Z));
-    TEST_ASSERT_EQUAL_UINT(XGO_REG_LEG4_Z, XGO_FOOT_REG(XGO_LEG_LH, XGO_AXIS_Z));
-    TEST_ASSERT_EQUAL_UINT(XGO_REG_SERVO11, XGO_SERVO_REG(XGO_LEG_LF, XGO_JOINT_KNEE));
-    TEST_ASSERT_EQUAL_UINT(XGO_REG_SERVO22, XGO_SERVO_REG(XGO_LEG_RF, XGO_JOINT_HIP));
-    TEST_ASSERT_EQUAL_UINT(XGO_REG_SERVO33, XGO_SERVO_REG(XGO_LEG_RH, XGO_JOINT_ABAD));
-    TEST_ASSERT_EQUAL_UINT(XGO_REG_SERVO43, XGO_SERVO_REG(XGO_LEG_LH, XGO_JOINT_ABAD));
-    TEST_ASSERT_EQUAL_UINT(11u, XGO_SERVO_ID(XGO_LEG_LF, XGO_JOINT_KNEE));
-    TEST_ASSERT_EQUAL_UINT(43u, XGO_SERVO_ID(XGO_LEG_LH, XGO_JOINT_ABAD));
-    for (leg = 0; leg < 4; ++leg) {
-        TEST_ASSERT_EQUAL_INT(side_x(leg), xgo_leg_side_x((xgo_leg_t)leg));
-        TEST_ASSERT_EQUAL_INT(side_y(leg), xgo_leg_side_y((xgo_leg_t)leg));
-    }
-}
-
 /* ------------------------------------------------------------ conventions */
 
 static void test_sign_conventions_and_zero_pose(void)
@@ -902,7 +854,6 @@ static void test_twelve_register_blocks(void)
 int main(void)
 {
     UNITY_BEGIN();
-    RUN_TEST(test_profiles_and_numbering);
     RUN_TEST(test_sign_conventions_and_zero_pose);
     RUN_TEST(test_standing_pose);
     RUN_TEST(test_fk_against_reference);

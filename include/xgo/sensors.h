@@ -55,8 +55,8 @@ void xgo_imu_init(xgo_imu_t *imu);
 void xgo_imu_set_ground_tilt(xgo_imu_t *imu, int32_t roll_mdeg, int32_t pitch_mdeg);
 /* A shove (an emulator input): the body is tipped by roll/pitch (mdeg, each
  * clamped to +-30 degrees, added to any shove still ringing) and springs back
- * as a damped oscillation (3 Hz, damping ratio 0.35: below 2 % of the tip
- * after 0.5 s). The IMU reads it; self-stabilisation (0x61) reacts to it. */
+ * as a damped oscillation (3 Hz, damping ratio 0.35: below 1 % of the tip
+ * from 0.65 s on, settled to 0 within 1.5 s; test_sensors). The IMU reads it; self-stabilisation (0x61) reacts to it. */
 void xgo_imu_push(xgo_imu_t *imu, int32_t roll_mdeg, int32_t pitch_mdeg);
 
 /* Zero the integrated yaw (action 255 does this, like a power-up). */

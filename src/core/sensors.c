@@ -42,6 +42,9 @@ void xgo_imu_set_ground_tilt(xgo_imu_t *imu, int32_t roll_mdeg, int32_t pitch_md
 
 /* The shove's spring per tick at 500 Hz, Q16: omega^2 dt^2 and 2 zeta omega
  * dt for 3 Hz and zeta 0.35 (docs/motion.md). */
+#if XGO_TICK_HZ != 500u
+#error "PUSH_SPRING_Q16 and PUSH_DAMPING_Q16 are per-tick constants for 500 Hz"
+#endif
 #define PUSH_SPRING_Q16 93
 #define PUSH_DAMPING_Q16 1730
 #define PUSH_MAX_MDEG 30000

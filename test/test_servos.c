@@ -1,0 +1,175 @@
+/*
+ * The twelve emulated servos (src/core/servos.c) on their own: rate-limited
+ * tracking, joint limits, limp joints and reloading without a jump, zero
+ * offsets recorded in calibration and kept within a turn. Expected angles are
+ * computed here from the step and the limits.
+ */
+#include <stdlib.h>
+#include <string.h>
+
+#include "unity.h"
+#include "xgo/profile.h"
+#include "xgo/servos.h"
+
+static xgo_servos_t s;
+static const xgo_profile_t *p;
+
+void setUp(void)
+{
+    static const int32_t zero[XGO_SERVO_COUNT] = {0};
+    p = xgo_profile_mini();
+    xgo_servos_init(&s, p, zero);
+}
+
+void tearDown(void)
+{
+}
+
+static const xgo_range_t *limits(unsigned i)
+{
+    return &p->joint_mdeg[i % XGO_JOINT_COUNT];
+}
+
+static void test_init_clamps_to_the_joint_limits(void)
+{
+    int32_t q[XGO_SERVO_COUNT];
+    unsigned i;
+    for (i = 0; i < XGO_SERVO_COUNT; i++) {
+        q[i] = i % 2 ? 1000000 : -1000000;
+    }
+    xgo_servos_init(&s, p, q);
+    for (i = 0; i < XGO_SERVO_COUNT; i++) {
+        TEST_ASSERT_EQUAL_INT32(i % 2 ? limits(i)->hi : limits(i)->lo, s.angle_mdeg[i]);
+        TEST_ASSERT_EQUAL_INT32(s.angle_mdeg[i], s.target_mdeg[i]);
+        TEST_ASSERT_EQUAL_INT32(0, s.zero_offset_mdeg[i]);
+    }
+    TEST_ASSERT_EQUAL_HEX16(0, s.unloaded);
+}
+
+/* Each tick a joint moves by the step (or what is left), never past the
+ * target; the number of ticks to arrive is ceil(distance / step). */
+static void test_joints_move_at_most_one_step_per_tick_and_arrive_exactly(void)
+{
+    int32_t q[XGO_SERVO_COUNT];
+    const int32_t step = 1200;
+    unsigned i, t;
+    for (i = 0; i < XGO_SERVO_COUNT; i++) {
+        q[i] = (int32_t)(i * 4001) - 20000; /* -20.000 .. +24.011 deg, inside every range */
+    }
+    xgo_servos_set_targets(&s, q);
+    for (t = 1; t <= 25; t++) {
+        xgo_servos_tick(&s, step);
+        for (i = 0; i < XGO_SERVO_COUNT; i++) {
+            const int32_t dist = abs(q[i]);
+            const int32_t moved = (int32_t)t * step < dist ? (int32_t)t * step : dist;
+            TEST_ASSERT_EQUAL_INT32(q[i] < 0 ? -moved : moved, s.angle_mdeg[i]);
+        }
+    }
+    for (i = 0; i < XGO_SERVO_COUNT; i++) {
+        TEST_ASSERT_EQUAL_INT32(q[i], s.angle_mdeg[i]);
+    }
+}
+
+static void test_targets_beyond_the_limits_stop_at_the_limits(void)
+{
+    int32_t q[XGO_SERVO_COUNT];
+    unsigned i;
+    for (i = 0; i < XGO_SERVO_COUNT; i++) {
+        q[i] = i < 6 ? INT32_MAX : INT32_MIN;
+    }
+    xgo_servos_set_targets(&s, q);
+    for (i = 0; i < 1000; i++) {
+        xgo_servos_tick(&s, 600000);
+    }
+    for (i = 0; i < XGO_SERVO_COUNT; i++) {
+        TEST_ASSERT_EQUAL_INT32(i < 6 ? limits(i)->hi : limits(i)->lo, s.angle_mdeg[i]);
+    }
+}
+
+static void test_a_negative_step_holds_every_joint(void)
+{
+    int32_t q[XGO_SERVO_COUNT];
+    unsigned i;
+    for (i = 0; i < XGO_SERVO_COUNT; i++) {
+        q[i] = 10000;
+    }
+    xgo_servos_set_targets(&s, q);
+    xgo_servos_tick(&s, -5);
+    for (i = 0; i < XGO_SERVO_COUNT; i++) {
+        TEST_ASSERT_EQUAL_INT32(0, s.angle_mdeg[i]);
+    }
+}
+
+/* Unloaded joints are limp: they keep their angle whatever the targets; a
+ * reloaded joint holds where it is (no jump back to an old target). */
+static void test_limp_joints_ignore_targets_and_reload_without_a_jump(void)
+{
+    int32_t q[XGO_SERVO_COUNT];
+    unsigned i;
+    for (i = 0; i < XGO_SERVO_COUNT; i++) {
+        q[i] = 5000;
+    }
+    xgo_servos_set_targets(&s, q);
+    xgo_servos_tick(&s, 2000); /* every joint at 2000 */
+    xgo_servos_unload(&s, XGO_SERVO_LEG_MASK(1));
+    TEST_ASSERT_EQUAL_HEX16(0x0038, s.unloaded);
+    for (i = 0; i < XGO_SERVO_COUNT; i++) {
+        q[i] = -30000;
+    }
+    xgo_servos_set_targets(&s, q);
+    xgo_servos_tick(&s, 1000);
+    for (i = 0; i < XGO_SERVO_COUNT; i++) {
+        TEST_ASSERT_EQUAL_INT32(i / 3 == 1 ? 2000 : 1000, s.angle_mdeg[i]);
+    }
+    xgo_servos_load(&s, XGO_SERVO_ALL_MASK);
+    TEST_ASSERT_EQUAL_HEX16(0, s.unloaded);
+    xgo_servos_tick(&s, 1000);
+    for (i = 3; i < 6; i++) {
+        TEST_ASSERT_EQUAL_INT32(2000, s.angle_mdeg[i]); /* holds where it was */
+    }
+    xgo_servos_unload(&s, 0xF000u); /* bits beyond the twelve joints mean nothing */
+    TEST_ASSERT_EQUAL_HEX16(0, s.unloaded);
+}
+
+/* Set zero: the current angle joins the offset and reads 0 from then on
+ * (clamped into the limits); offsets stay in [-180, 180) degrees. */
+static void test_set_zero_moves_the_angle_into_the_offset_within_a_turn(void)
+{
+    int32_t q[XGO_SERVO_COUNT];
+    unsigned i, k;
+    for (i = 0; i < XGO_SERVO_COUNT; i++) {
+        q[i] = i % 2 ? limits(i)->hi : limits(i)->lo;
+    }
+    xgo_servos_init(&s, p, q);
+    xgo_servos_record_zero(&s);
+    for (i = 0; i < XGO_SERVO_COUNT; i++) {
+        TEST_ASSERT_EQUAL_INT32(q[i], s.zero_offset_mdeg[i]);
+        TEST_ASSERT_EQUAL_INT32(0, s.angle_mdeg[i]);
+        TEST_ASSERT_EQUAL_INT32(q[i], xgo_servos_raw(&s, i));
+    }
+    for (k = 0; k < 20; k++) { /* keep recording from the limit */
+        xgo_servos_init(&s, p, q);
+        for (i = 0; i < XGO_SERVO_COUNT; i++) {
+            s.zero_offset_mdeg[i] = (int32_t)(k * 45000u) - 179000;
+        }
+        xgo_servos_record_zero(&s);
+        for (i = 0; i < XGO_SERVO_COUNT; i++) {
+            int32_t want = ((int32_t)(k * 45000u) - 179000 + q[i]) % 360000;
+            want = want >= 180000 ? want - 360000 : (want < -180000 ? want + 360000 : want);
+            TEST_ASSERT_EQUAL_INT32(want, s.zero_offset_mdeg[i]);
+            TEST_ASSERT_TRUE(s.zero_offset_mdeg[i] >= -180000 && s.zero_offset_mdeg[i] < 180000);
+        }
+    }
+}
+
+int main(void)
+{
+    UNITY_BEGIN();
+    RUN_TEST(test_init_clamps_to_the_joint_limits);
+    RUN_TEST(test_joints_move_at_most_one_step_per_tick_and_arrive_exactly);
+    RUN_TEST(test_targets_beyond_the_limits_stop_at_the_limits);
+    RUN_TEST(test_a_negative_step_holds_every_joint);
+    RUN_TEST(test_limp_joints_ignore_targets_and_reload_without_a_jump);
+    RUN_TEST(test_set_zero_moves_the_angle_into_the_offset_within_a_turn);
+    return UNITY_END();
+}
