@@ -9,23 +9,7 @@
 #include <termios.h>
 #include <unistd.h>
 
-/* The slave's settings: what a freshly powered board's UART would look like
- * to a host that opens it without configuring anything. */
-static int xgo_host_pty_make_raw(int fd)
-{
-    struct termios tio;
-    if (tcgetattr(fd, &tio) != 0) {
-        return -1;
-    }
-    cfmakeraw(&tio); /* no echo, no CR/NL mapping, no XON/XOFF, no signals */
-    tio.c_cflag |= CLOCAL | CREAD;
-    tio.c_cc[VMIN] = 1;
-    tio.c_cc[VTIME] = 0;
-    if (cfsetispeed(&tio, B115200) != 0 || cfsetospeed(&tio, B115200) != 0) {
-        return -1;
-    }
-    return tcsetattr(fd, TCSANOW, &tio);
-}
+#include "serial.h"
 
 static int xgo_host_pty_set_flags(int fd)
 {
@@ -71,7 +55,9 @@ int xgo_host_pty_open(xgo_host_pty_t *pty, char *err, size_t err_size)
         snprintf(err, err_size, "open %s: %s", pty->slave_path, strerror(errno));
         goto fail;
     }
-    if (xgo_host_pty_make_raw(slave_fd) != 0) {
+    /* What a freshly powered board's UART looks like to a host that opens
+     * the port without configuring anything. */
+    if (xgo_host_serial_make_raw(slave_fd, XGO_HOST_DEFAULT_BAUD) != 0) {
         snprintf(err, err_size, "raw mode on %s: %s", pty->slave_path, strerror(errno));
         close(slave_fd);
         goto fail;
@@ -98,71 +84,13 @@ void xgo_host_pty_close(xgo_host_pty_t *pty)
     }
 }
 
-typedef struct xgo_host_speed_s {
-    speed_t code;
-    uint32_t bits_per_s;
-} xgo_host_speed_t;
-
-/* speed_t is an opaque code on Linux (B115200 != 115200): map the ones a
- * host may plausibly choose. */
-static const xgo_host_speed_t xgo_host_speeds[] = {
-    {B50, 50},         {B75, 75},         {B110, 110},       {B134, 134},
-    {B150, 150},       {B200, 200},       {B300, 300},       {B600, 600},
-    {B1200, 1200},     {B1800, 1800},     {B2400, 2400},     {B4800, 4800},
-    {B9600, 9600},     {B19200, 19200},   {B38400, 38400},
-#ifdef B57600
-    {B57600, 57600},
-#endif
-#ifdef B115200
-    {B115200, 115200},
-#endif
-#ifdef B230400
-    {B230400, 230400},
-#endif
-#ifdef B460800
-    {B460800, 460800},
-#endif
-#ifdef B500000
-    {B500000, 500000},
-#endif
-#ifdef B576000
-    {B576000, 576000},
-#endif
-#ifdef B921600
-    {B921600, 921600},
-#endif
-#ifdef B1000000
-    {B1000000, 1000000},
-#endif
-#ifdef B1500000
-    {B1500000, 1500000},
-#endif
-#ifdef B2000000
-    {B2000000, 2000000},
-#endif
-#ifdef B3000000
-    {B3000000, 3000000},
-#endif
-#ifdef B4000000
-    {B4000000, 4000000},
-#endif
-};
-
 uint32_t xgo_host_pty_host_baud(const xgo_host_pty_t *pty)
 {
     struct termios tio;
-    speed_t code;
-    size_t i;
     if (tcgetattr(pty->master_fd, &tio) != 0) {
         return 0;
     }
-    code = cfgetospeed(&tio);
-    for (i = 0; i < sizeof xgo_host_speeds / sizeof xgo_host_speeds[0]; i++) {
-        if (xgo_host_speeds[i].code == code) {
-            return xgo_host_speeds[i].bits_per_s;
-        }
-    }
-    return 0; /* B0 or a custom (BOTHER) rate we cannot see through termios */
+    return xgo_host_serial_baud_of(cfgetospeed(&tio));
 }
 
 void xgo_host_pty_discard_unread(const xgo_host_pty_t *pty)
