@@ -66,8 +66,8 @@ static void fit_motion(const xgo_odometry_t *o, const int32_t feet_um[XGO_LEG_CO
     {
         const int64_t rx = round_shift64(xgo_mul_wide(c, sb[0]) - xgo_mul_wide(s, sb[1]), 22);
         const int64_t ry = round_shift64(xgo_mul_wide(s, sb[0]) + xgo_mul_wide(c, sb[1]), 22);
-        d_q8[0] = div_small(xgo_sat32(((int64_t)sa[0] << 8) - rx), n);
-        d_q8[1] = div_small(xgo_sat32(((int64_t)sa[1] << 8) - ry), n);
+        d_q8[0] = div_small(xgo_sat32(((int64_t)sa[0] * 256) - rx), n);
+        d_q8[1] = div_small(xgo_sat32(((int64_t)sa[1] * 256) - ry), n);
     }
 }
 
