@@ -182,10 +182,11 @@ static void pad(xgo_area_t *a, double margin)
     xgo_area_equal_scale(a);
 }
 
-/* Every step-th row so a trajectory has at most about 4000 points. */
+/* Every step-th row so a trajectory has at most about 1500 points (a
+ * swing still gets 20 or more at 500 rows/s; the file stays small). */
 static size_t stride(const xgo_rec_t *rec)
 {
-    return rec->n / 4000u + 1u;
+    return rec->n / 1500u + 1u;
 }
 
 /* Seconds between heading marks: 1, or more so there are at most 60. */
