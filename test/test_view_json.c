@@ -43,12 +43,13 @@ static void test_writer_places_commas_and_nests(void)
     xgo_host_json_object_end(&g_w);
     xgo_host_json_bool(&g_w, 1);
     xgo_host_json_bool(&g_w, 0);
+    xgo_host_json_null(&g_w);
     xgo_host_json_array_end(&g_w);
     xgo_host_json_key(&g_w, "c");
     xgo_host_json_string(&g_w, "x");
     xgo_host_json_object_end(&g_w);
     TEST_ASSERT_TRUE(xgo_host_json_ok(&g_w));
-    TEST_ASSERT_EQUAL_STRING("{\"a\":-5,\"b\":[1,[],{},true,false],\"c\":\"x\"}", g_buf);
+    TEST_ASSERT_EQUAL_STRING("{\"a\":-5,\"b\":[1,[],{},true,false,null],\"c\":\"x\"}", g_buf);
 }
 
 static void test_writer_extreme_integers(void)

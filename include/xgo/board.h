@@ -126,6 +126,13 @@ xgo_drop_reason_t xgo_board_write(xgo_board_t *b, uint8_t source, uint8_t addr,
  * Frames: body frame = body axes, origin at the body centre, x forward,
  * y left, z up. Angles in millidegrees, lengths in micrometres. */
 
+/* Registers addr..addr+n-1 as a host's read request for them would return
+ * them (computed views included, the diagnostic block current), without a
+ * frame: nothing is counted, traced or queued. Returns XGO_DROP_NONE, or
+ * XGO_DROP_BAD_RANGE (out untouched) for n == 0, n > XGO_FRAME_MAX_DATA or
+ * addr + n > 256. */
+xgo_drop_reason_t xgo_board_read(const xgo_board_t *b, uint8_t addr, size_t n, uint8_t *out);
+
 /* Board time: control ticks since init, in ms. */
 uint32_t xgo_board_time_ms(const xgo_board_t *b);
 /* Register 0x00 (xgo_mode_t) and the running action (0x3E, 0 = none). */

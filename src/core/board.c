@@ -256,6 +256,26 @@ void xgo_board_push(xgo_board_t *b, int32_t roll_mdeg, int32_t pitch_mdeg)
 #error "xgo_board_time_ms assumes a whole number of ms per tick"
 #endif
 
+xgo_drop_reason_t xgo_board_read(const xgo_board_t *b, uint8_t addr, size_t n, uint8_t *out)
+{
+    uint32_t counters[XGO_DIAG_COUNT];
+    const xgo_drop_reason_t why = xgo_regs_read(&b->regs, addr, n, out);
+    size_t i;
+    if (why != XGO_DROP_NONE) {
+        return why;
+    }
+    /* The block in regs is refreshed only by a read frame: overlay the
+     * counters as they are now (uint32 little-endian, as on the wire). */
+    xgo_board_counters(b, counters);
+    for (i = 0; i < 4u * XGO_DIAG_COUNT; i++) {
+        const size_t reg = XGO_REG_DIAG + i;
+        if (reg >= addr && reg < (size_t)addr + n) {
+            out[reg - addr] = (uint8_t)(counters[i / 4u] >> (8u * (i % 4u)));
+        }
+    }
+    return XGO_DROP_NONE;
+}
+
 uint32_t xgo_board_time_ms(const xgo_board_t *b)
 {
     return b->ticks * (1000u / XGO_TICK_HZ);

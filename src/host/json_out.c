@@ -151,6 +151,12 @@ void xgo_host_json_bool(xgo_host_json_t *w, int v)
     }
 }
 
+void xgo_host_json_null(xgo_host_json_t *w)
+{
+    xgo_host_json_separate(w);
+    xgo_host_json_raw(w, "null", 4);
+}
+
 static uint64_t xgo_host_json_pow10(unsigned e)
 {
     uint64_t p = 1;

@@ -53,6 +53,7 @@ void xgo_host_json_key(xgo_host_json_t *w, const char *key);
 void xgo_host_json_int(xgo_host_json_t *w, int64_t v);
 void xgo_host_json_uint(xgo_host_json_t *w, uint64_t v);
 void xgo_host_json_bool(xgo_host_json_t *w, int v);
+void xgo_host_json_null(xgo_host_json_t *w);
 
 /* value * 10^-scale written with `decimals` digits after the point
  * (decimals <= scale <= 9), rounded half away from zero: (-1234, 3, 2) is

@@ -70,6 +70,20 @@ void xgo_host_loop_set_state(xgo_host_loop_t *l, xgo_host_state_t *state)
     l->state = state;
 }
 
+int xgo_host_loop_add_service(xgo_host_loop_t *l, const xgo_host_service_t *s)
+{
+    if (l->service_count >= XGO_HOST_MAX_SERVICES) {
+        return -1;
+    }
+    l->services[l->service_count++] = s;
+    return 0;
+}
+
+int xgo_host_loop_host_attached(const xgo_host_loop_t *l)
+{
+    return !l->host_gone;
+}
+
 static uint32_t xgo_host_loop_bytes_per_s(const xgo_host_loop_t *l)
 {
     uint32_t baud = xgo_host_pty_host_baud(l->pty);
@@ -102,7 +116,13 @@ static void xgo_host_loop_run_ticks(xgo_host_loop_t *l, uint64_t now_us)
         l->next_tick_us += (due - 1) * XGO_HOST_TICK_US;
     }
     for (i = 0; i < due; i++) {
+        size_t s;
         xgo_board_tick(l->board);
+        for (s = 0; s < l->service_count; s++) {
+            if (l->services[s]->after_tick != NULL) {
+                l->services[s]->after_tick(l->services[s]->ctx);
+            }
+        }
     }
     l->next_tick_us += XGO_HOST_TICK_US;
     l->counters.ticks += due;
@@ -342,24 +362,58 @@ static uint64_t xgo_host_loop_wake_us(const xgo_host_loop_t *l)
 /* poll() until wake_us. Linux has ppoll() (POSIX.1-2024) with microsecond
  * timeouts, which keeps ticks and paced bytes on time; elsewhere poll()'s
  * millisecond timeout is rounded up, so nothing is ever early. */
-static int xgo_host_loop_wait(struct pollfd *pfd, uint64_t now_us, uint64_t wake_us)
+static int xgo_host_loop_wait(struct pollfd *pfd, size_t n, uint64_t now_us, uint64_t wake_us)
 {
     uint64_t wait_us = wake_us > now_us ? wake_us - now_us : 0;
 #ifdef __linux__
     struct timespec ts;
     ts.tv_sec = (time_t)(wait_us / 1000000u);
     ts.tv_nsec = (long)(wait_us % 1000000u) * 1000L;
-    return ppoll(pfd, 1, &ts, NULL);
+    return ppoll(pfd, (nfds_t)n, &ts, NULL);
 #else
-    return poll(pfd, 1, (int)((wait_us + 999u) / 1000u));
+    return poll(pfd, (nfds_t)n, (int)((wait_us + 999u) / 1000u));
 #endif
+}
+
+/* Each service's work of this turn, with what the last poll saw. */
+static void xgo_host_loop_serve_services(xgo_host_loop_t *l, uint64_t now_us)
+{
+    const struct pollfd *fds = l->fds + 1;
+    size_t s;
+    for (s = 0; s < l->service_count; s++) {
+        if (l->services[s]->serve != NULL) {
+            l->services[s]->serve(l->services[s]->ctx, fds, l->service_nfds[s], now_us);
+        }
+        fds += l->service_nfds[s];
+    }
+}
+
+/* Fills l->fds[1..] with the services' descriptors; returns how many. */
+static size_t xgo_host_loop_service_fds(xgo_host_loop_t *l)
+{
+    size_t used = 0;
+    size_t s, i;
+    for (s = 0; s < l->service_count; s++) {
+        struct pollfd *fds = l->fds + 1 + used;
+        l->service_nfds[s] = 0;
+        if (l->services[s]->poll_fds != NULL) {
+            l->service_nfds[s] = l->services[s]->poll_fds(l->services[s]->ctx, fds,
+                                                          XGO_HOST_MAX_SERVICE_FDS - used);
+        }
+        for (i = 0; i < l->service_nfds[s]; i++) {
+            fds[i].revents = 0; /* stays 0 if poll is interrupted */
+        }
+        used += l->service_nfds[s];
+    }
+    return used;
 }
 
 int xgo_host_loop_run(xgo_host_loop_t *l)
 {
     while (!*l->stop) {
         uint64_t now = xgo_host_clock_us();
-        struct pollfd pfd;
+        struct pollfd *pfd = &l->fds[0];
+        size_t nfds;
         int ready;
 
         xgo_host_loop_run_ticks(l, now);
@@ -387,13 +441,15 @@ int xgo_host_loop_run(xgo_host_loop_t *l)
         if (l->trace != NULL) {
             xgo_host_trace_tick(l->trace, now); /* folded noise, rate-bounded */
         }
+        xgo_host_loop_serve_services(l, now);
 
-        pfd.fd = l->host_gone ? -1 : l->pty->master_fd; /* negative fd: ignored */
-        pfd.events = (short)((l->in_len == 0 ? POLLIN : 0) | (l->out_blocked ? POLLOUT : 0));
-        pfd.revents = 0;
+        pfd->fd = l->host_gone ? -1 : l->pty->master_fd; /* negative fd: ignored */
+        pfd->events = (short)((l->in_len == 0 ? POLLIN : 0) | (l->out_blocked ? POLLOUT : 0));
+        pfd->revents = 0;
+        nfds = 1 + xgo_host_loop_service_fds(l);
         /* A signal landing between the stop check and poll() is noticed
          * at the latest one tick later: the timeout never exceeds a tick. */
-        ready = xgo_host_loop_wait(&pfd, now, xgo_host_loop_wake_us(l));
+        ready = xgo_host_loop_wait(l->fds, nfds, now, xgo_host_loop_wake_us(l));
         if (ready < 0) {
             if (errno == EINTR) {
                 continue;
@@ -407,10 +463,10 @@ int xgo_host_loop_run(xgo_host_loop_t *l)
         now = xgo_host_clock_us();
         /* Hang-up first: input still readable after it was written by a
          * host that has gone, and its replies must not reach the next one. */
-        if (pfd.revents & (POLLHUP | POLLERR)) {
+        if (pfd->revents & (POLLHUP | POLLERR)) {
             xgo_host_loop_host_left(l);
         }
-        if (pfd.revents & POLLIN) {
+        if (pfd->revents & POLLIN) {
             xgo_host_loop_read(l, now);
         }
     }

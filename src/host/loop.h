@@ -6,6 +6,7 @@
 #ifndef XGO_HOST_LOOP_H
 #define XGO_HOST_LOOP_H
 
+#include <poll.h>
 #include <signal.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -29,6 +30,23 @@ typedef struct xgo_host_counters_s {
 } xgo_host_counters_t;
 
 #define XGO_HOST_INBUF_BYTES 4096u
+
+/* Something served in the same loop besides the pty (the view server, the
+ * motion recorder); every function is optional (NULL). In each turn the
+ * ticks that are due and the pty come first, services after them, so a
+ * service never delays a reply or a tick by more than its own bounded work. */
+typedef struct xgo_host_service_s {
+    void (*after_tick)(void *ctx); /* after every control tick */
+    /* Descriptors to poll this turn (at most max); returns how many. */
+    size_t (*poll_fds)(void *ctx, struct pollfd *fds, size_t max);
+    /* Each turn, after the pty; fds as poll_fds filled them, with the
+     * revents of the last poll (0 after a timeout). */
+    void (*serve)(void *ctx, const struct pollfd *fds, size_t n, uint64_t now_us);
+    void *ctx;
+} xgo_host_service_t;
+
+#define XGO_HOST_MAX_SERVICES 2u
+#define XGO_HOST_MAX_SERVICE_FDS 32u
 
 typedef struct xgo_host_loop_s {
     xgo_board_t *board;
@@ -60,6 +78,12 @@ typedef struct xgo_host_loop_s {
 
     uint64_t next_tick_us;
     xgo_host_counters_t counters;
+
+    const xgo_host_service_t *services[XGO_HOST_MAX_SERVICES];
+    size_t service_count;
+    /* Last poll: [0] the pty, then each service's descriptors in turn. */
+    struct pollfd fds[1 + XGO_HOST_MAX_SERVICE_FDS];
+    size_t service_nfds[XGO_HOST_MAX_SERVICES];
 } xgo_host_loop_t;
 
 void xgo_host_loop_init(xgo_host_loop_t *l, xgo_board_t *board, const xgo_host_pty_t *pty,
@@ -68,6 +92,13 @@ void xgo_host_loop_init(xgo_host_loop_t *l, xgo_board_t *board, const xgo_host_p
 /* Keep the board's non-volatile data saved in state while serving: checked
  * after every round of ticks (a save happens only when it changed). */
 void xgo_host_loop_set_state(xgo_host_loop_t *l, xgo_host_state_t *state);
+
+/* Serves s too from now on (s must outlive the loop). Returns 0, or -1
+ * when XGO_HOST_MAX_SERVICES are already added. */
+int xgo_host_loop_add_service(xgo_host_loop_t *l, const xgo_host_service_t *s);
+
+/* 1 while a host has the pty open (as far as the loop has seen). */
+int xgo_host_loop_host_attached(const xgo_host_loop_t *l);
 
 /* Serves until *stop becomes non-zero. Returns 0, or -1 if poll() fails for
  * a reason other than a signal (message on stderr). */

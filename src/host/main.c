@@ -16,8 +16,10 @@
 #include "loop.h"
 #include "options.h"
 #include "pty.h"
+#include "record.h"
 #include "state_file.h"
 #include "trace.h"
+#include "view_server.h"
 #include "xgo/board.h"
 
 #define XGO_EXIT_OK 0
@@ -51,10 +53,37 @@ static int xgo_host_install_signals(void)
     return sigaction(SIGPIPE, &sa, NULL);
 }
 
+/* --view and --record: opened before the pty exists, so a port in use or
+ * an uncreatable file stops us before anything is visible to a host. */
+static int xgo_host_open_outputs(const xgo_host_options_t *opts, xgo_host_view_t *view,
+                                 xgo_host_record_t *record, const xgo_board_t *board, char *err,
+                                 size_t err_size)
+{
+    if (opts->view) {
+        if (xgo_host_view_open(view, opts->view_addr, opts->view_port, opts->view_hz, err,
+                               err_size) != 0) {
+            return -1;
+        }
+        if ((opts->view_addr >> 24) != 127u) {
+            fprintf(stderr, "xgo-emu: warning: --view on %s is reachable from other machines; "
+                            "anyone who can connect can drive the robot\n",
+                    view->host);
+        }
+    }
+    if (opts->record_path != NULL &&
+        xgo_host_record_open(record, opts->record_path, opts->record_hz, board, err, err_size) !=
+            0) {
+        return -1;
+    }
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     static xgo_board_t board;   /* static: large, and lives as long as the process */
     static xgo_host_loop_t loop;
+    static xgo_host_view_t view;     /* --view: 2.4 MB of client buffers */
+    static xgo_host_record_t record; /* --record */
     xgo_host_options_t opts;
     xgo_host_pty_t pty;
     xgo_host_trace_t trace;
@@ -89,6 +118,10 @@ int main(int argc, char **argv)
         fprintf(stderr, "xgo-emu: %s\n", err);
         return XGO_EXIT_RUNTIME;
     }
+    if (xgo_host_open_outputs(&opts, &view, &record, &board, err, sizeof err) != 0) {
+        fprintf(stderr, "xgo-emu: %s\n", err);
+        return XGO_EXIT_RUNTIME;
+    }
     if (xgo_host_pty_open(&pty, err, sizeof err) != 0) {
         fprintf(stderr, "xgo-emu: %s\n", err);
         return XGO_EXIT_RUNTIME;
@@ -115,8 +148,18 @@ int main(int argc, char **argv)
     if (opts.state_path != NULL) {
         xgo_host_loop_set_state(&loop, &state);
     }
+    if (opts.view) {
+        (void)xgo_host_view_attach(&view, &board, (unsigned)opts.board.model, &loop,
+                                   opts.trace ? &trace : NULL);
+    }
+    if (opts.record_path != NULL) {
+        (void)xgo_host_loop_add_service(&loop, &record.service);
+    }
 
     printf("%s\n", pty.slave_path);
+    if (opts.view) {
+        printf("view: http://%s:%u/\n", view.host, view.port);
+    }
     fflush(stdout);
 
     rc = xgo_host_loop_run(&loop);
@@ -129,7 +172,14 @@ int main(int argc, char **argv)
     if (opts.trace) {
         xgo_host_trace_flush(&trace); /* noise folded since the last line */
     }
+    if (opts.record_path != NULL && xgo_host_record_close(&record, stderr) != 0) {
+        rc = -1;
+    }
     xgo_host_loop_print_counters(&loop, stderr);
+    if (opts.view) {
+        xgo_host_view_print_counters(&view, stderr);
+        xgo_host_view_close(&view);
+    }
     if (opts.link_path != NULL) {
         xgo_host_link_remove_if_ours(opts.link_path, pty.slave_path);
     }

@@ -8,6 +8,7 @@
  */
 #include "options.h"
 
+#include <arpa/inet.h>
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
@@ -195,6 +196,83 @@ static xgo_host_apply_t xgo_host_apply_ground_tilt(xgo_host_options_t *opts, con
     return XGO_HOST_APPLY_OK;
 }
 
+/* --view [HOST:]PORT: HOST an IPv4 address or "localhost" (the default),
+ * PORT 0..65535 (0: any free port). */
+static xgo_host_apply_t xgo_host_apply_view(xgo_host_options_t *opts, const char *value,
+                                             char *err, size_t err_size)
+{
+    const char *colon = strrchr(value, ':');
+    const char *port_text = colon != NULL ? colon + 1 : value;
+    unsigned long port;
+    char host[64];
+    struct in_addr addr;
+    addr.s_addr = htonl(INADDR_LOOPBACK);
+    if (colon != NULL) {
+        size_t n = (size_t)(colon - value);
+        if (n == 0 || n >= sizeof host) {
+            n = sizeof host; /* refused below */
+        } else {
+            memcpy(host, value, n);
+            host[n] = '\0';
+        }
+        if (n == sizeof host ||
+            (strcmp(host, "localhost") != 0 && inet_pton(AF_INET, host, &addr) != 1)) {
+            snprintf(err, err_size,
+                     "--view HOST must be an IPv4 address or localhost, not '%s'", value);
+            return XGO_HOST_APPLY_BAD_VALUE;
+        }
+    }
+    if (!xgo_host_parse_ulong(port_text, 0, 65535, &port)) {
+        snprintf(err, err_size, "--view needs [HOST:]PORT with PORT 0..65535, not '%s'", value);
+        return XGO_HOST_APPLY_BAD_VALUE;
+    }
+    opts->view = 1;
+    opts->view_addr = ntohl(addr.s_addr);
+    opts->view_port = (unsigned)port;
+    return XGO_HOST_APPLY_OK;
+}
+
+/* Whole number lo..hi into *out, or misuse naming the option. */
+static xgo_host_apply_t xgo_host_apply_rate(const char *option, const char *value,
+                                             unsigned long lo, unsigned long hi, unsigned *out,
+                                             char *err, size_t err_size)
+{
+    unsigned long n;
+    if (!xgo_host_parse_ulong(value, lo, hi, &n)) {
+        snprintf(err, err_size, "--%s must be a whole number %lu..%lu, not '%s'", option, lo, hi,
+                 value);
+        return XGO_HOST_APPLY_BAD_VALUE;
+    }
+    *out = (unsigned)n;
+    return XGO_HOST_APPLY_OK;
+}
+
+/* Events a second: at most one per control tick. */
+static xgo_host_apply_t xgo_host_apply_view_hz(xgo_host_options_t *opts, const char *value,
+                                                char *err, size_t err_size)
+{
+    return xgo_host_apply_rate("view-hz", value, 1, XGO_TICK_HZ, &opts->view_hz, err, err_size);
+}
+
+static xgo_host_apply_t xgo_host_apply_record(xgo_host_options_t *opts, const char *value,
+                                               char *err, size_t err_size)
+{
+    if (value[0] == '\0') {
+        snprintf(err, err_size, "--record needs a non-empty FILE");
+        return XGO_HOST_APPLY_BAD_VALUE;
+    }
+    opts->record_path = value;
+    return XGO_HOST_APPLY_OK;
+}
+
+/* Rows a second: at most one per control tick. */
+static xgo_host_apply_t xgo_host_apply_record_hz(xgo_host_options_t *opts, const char *value,
+                                                  char *err, size_t err_size)
+{
+    return xgo_host_apply_rate("record-hz", value, 1, XGO_TICK_HZ, &opts->record_hz, err,
+                               err_size);
+}
+
 static xgo_host_apply_t xgo_host_apply_help(xgo_host_options_t *opts, const char *value,
                                              char *err, size_t err_size)
 {
@@ -232,6 +310,12 @@ static const xgo_host_option_t xgo_host_option_table[] = {
      xgo_host_apply_state},
     {"ground-tilt", 0, "R,P", "ground tilted R deg in roll, P deg in pitch (e.g. 5,-2.5; max 45)",
      xgo_host_apply_ground_tilt},
+    {"view", 0, "[HOST:]PORT", "serve the live view on http://HOST:PORT/ (HOST 127.0.0.1)",
+     xgo_host_apply_view},
+    {"view-hz", 0, "N", "live view events a second, 1..500 (default 30)", xgo_host_apply_view_hz},
+    {"record", 0, "FILE", "write the motion log to FILE (CSV, one row per tick)",
+     xgo_host_apply_record},
+    {"record-hz", 0, "N", "motion log rows a second instead, 1..500", xgo_host_apply_record_hz},
     {"help", 'h', NULL, "show this help and exit", xgo_host_apply_help},
     {"version", 0, NULL, "show the version and exit", xgo_host_apply_version},
 };
@@ -273,12 +357,31 @@ static const xgo_host_option_t *xgo_host_option_lookup(const char *word, const c
     return NULL;
 }
 
+/* Options that only make sense together. */
+static xgo_host_parse_result_t xgo_host_options_check(xgo_host_options_t *opts, char *error,
+                                                      size_t error_size)
+{
+    if (opts->view_hz != 0 && !opts->view) {
+        snprintf(error, error_size, "--view-hz needs --view");
+        return XGO_HOST_PARSE_ERROR;
+    }
+    if (opts->record_hz != 0 && opts->record_path == NULL) {
+        snprintf(error, error_size, "--record-hz needs --record");
+        return XGO_HOST_PARSE_ERROR;
+    }
+    if (opts->view_hz == 0) {
+        opts->view_hz = 30u;
+    }
+    return XGO_HOST_PARSE_RUN;
+}
+
 xgo_host_parse_result_t xgo_host_options_parse(xgo_host_options_t *opts, int argc, char **argv,
                                                char *error, size_t error_size)
 {
     int i;
     memset(opts, 0, sizeof *opts);
     xgo_board_default_config(&opts->board);
+    opts->view_addr = 0x7F000001ul; /* 127.0.0.1 */
 
     for (i = 1; i < argc; i++) {
         const char *word = argv[i];
@@ -317,7 +420,7 @@ xgo_host_parse_result_t xgo_host_options_parse(xgo_host_options_t *opts, int arg
             return XGO_HOST_PARSE_VERSION;
         }
     }
-    return XGO_HOST_PARSE_RUN;
+    return xgo_host_options_check(opts, error, error_size);
 }
 
 /* A help text; lines after the first (split at '\n') are indented under

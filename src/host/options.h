@@ -22,6 +22,12 @@ typedef struct xgo_host_options_s {
     int32_t ground_roll_mdeg; /* --ground-tilt, 0,0 = level */
     int32_t ground_pitch_mdeg;
     xgo_board_config_t board; /* --profile, --battery, --timeout-ms */
+    int view;                 /* --view given */
+    uint32_t view_addr;       /* its IPv4 address, host byte order (127.0.0.1) */
+    unsigned view_port;       /* 0 = any free port */
+    unsigned view_hz;         /* --view-hz, events a second */
+    const char *record_path;  /* --record, NULL = no motion log */
+    unsigned record_hz;       /* --record-hz, 0 = a row every tick */
 } xgo_host_options_t;
 
 typedef enum xgo_host_parse_result_e {
