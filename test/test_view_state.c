@@ -217,7 +217,7 @@ static void test_parser_drop_has_no_address(void)
     TEST_ASSERT_TRUE(xgo_test_json_string(g_text, "frames.0.kind", text, sizeof text));
     TEST_ASSERT_EQUAL_STRING("drop", text);
     TEST_ASSERT_TRUE(xgo_test_json_string(g_text, "frames.0.text", text, sizeof text));
-    TEST_ASSERT_EQUAL_STRING("bad checksum [55 00 09 02 50 0C 99 00 AA]", text);
+    TEST_ASSERT_EQUAL_STRING("bad checksum [55 00 09 02 50 0C 99 00 AA] checksum 99, expected 98", text);
     TEST_ASSERT_NOT_NULL(strstr(g_text, "\"addr\":null,\"n\":9,"));
 }
 
