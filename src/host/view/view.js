@@ -61,6 +61,8 @@
   function loadMeta(done) {
     var req = new XMLHttpRequest();
     req.open('GET', 'meta');
+    req.timeout = 3000;         /* a hung server must not stop the reconnecting */
+    req.ontimeout = function () { done(false); };
     req.onload = function () {
       if (req.status !== 200) { return done(false); }
       try { applyMeta(JSON.parse(req.responseText)); } catch (e) { return done(false); }
@@ -139,7 +141,7 @@
 
   function onState(s) {
     var now = performance.now();
-    if (latest && (s.t_ms < latest.t_ms || s.seq < latest.seq)) { /* xgo-emu restarted */
+    if (latest && s.t_ms < latest.t_ms) { /* board time went back: xgo-emu restarted */
       states = []; offsets = []; trail = [];
     }
     latest = s;
@@ -695,7 +697,7 @@
     s.frames.forEach(function (f) {
       var line = document.createElement('div');
       line.className = f.kind + (f.source && f.source !== 'wire' ? ' view' : '');
-      line.textContent = fix(f.t_ms / 1000, 3).padStart(9) + ' ' + (f.source || '').padEnd(4) + ' ' + (f.kind === 'drop' ? 'drop ' : '') + f.text;
+      line.textContent = fix(f.t_ms / 1000, 3).padStart(9) + ' ' + (f.source || '').padEnd(4) + ' ' + f.kind + ' ' + f.text;
       frag.appendChild(line);
     });
     log.appendChild(frag);
