@@ -14,8 +14,9 @@ no port, no extra library), checks that the page
     grew and lastStateMs advanced;
   - drives the robot through POST /command: a click on "lie down" starts
     action 1, the S key makes the commanded vx negative and its release zero
-    (GET /state);
-  - shows a lost connection and reconnects by itself when xgo-emu restarts.
+    (GET /state); the ground-roll slider tilts the IMU (POST /input);
+  - shows a lost connection and reconnects by itself when xgo-emu restarts;
+  - threw no uncaught JavaScript exception all along.
 
 Exit 0 pass, 1 fail, 77 skip (no Chromium: ctest SKIP_RETURN_CODE). Waits are
 bounded; timings are never asserted (rAF is throttled headless, docs/testing.md).
@@ -147,6 +148,7 @@ class Browser:
         self.buf = b""
         self.next_id = 0
         self.session = None
+        self.errors = []  # uncaught JavaScript exceptions seen
 
     def call(self, method, params=None, session=True, timeout=20.0):
         self.next_id += 1
@@ -167,6 +169,9 @@ class Browser:
                 self.buf += chunk
             raw, self.buf = self.buf.split(b"\0", 1)
             reply = json.loads(raw)
+            if reply.get("method") == "Runtime.exceptionThrown":  # an uncaught error in the page
+                details = reply["params"]["exceptionDetails"]
+                self.errors.append(details.get("exception", {}).get("description") or details.get("text"))
             if reply.get("id") == self.next_id:
                 if "error" in reply:
                     raise Failure(method + ": " + json.dumps(reply["error"]))
@@ -176,6 +181,7 @@ class Browser:
         target = self.call("Target.createTarget", {"url": url}, session=False)["targetId"]
         self.session = self.call("Target.attachToTarget", {"targetId": target, "flatten": True},
                                  session=False)["sessionId"]
+        self.call("Runtime.enable")  # reports uncaught exceptions from here on
 
     def eval(self, expr):
         r = self.call("Runtime.evaluate", {"expression": expr, "returnByValue": True})
@@ -311,6 +317,14 @@ def check_remote_control(browser, emu):
     check(True, "releasing S commands vx = 0")
 
 
+def check_inputs(browser, emu):
+    browser.eval("(function(){var e=document.getElementById('in-roll'); e.value='10';"
+                 "e.dispatchEvent(new Event('input'));})()")
+    roll = wait_for("IMU roll after the ground-roll slider", lambda: (lambda r: r if abs(r - 10) < 0.5
+                                                                     else None)(emu.state()["imu"]["roll_deg"]))
+    check(True, "the ground-roll slider tilts the ground (POST /input): IMU roll %.2f deg" % roll)
+
+
 def check_reconnect(browser, emu_exe, emu):
     port = emu.port
     emu.stop()
@@ -351,7 +365,9 @@ def main():
         browser.open(emu.url)
         check_drawing(browser)
         check_remote_control(browser, emu)
+        check_inputs(browser, emu)
         check_reconnect(browser, sys.argv[1], emu)
+        check(not browser.errors, "no uncaught JavaScript error (%s)" % "; ".join(map(str, browser.errors)))
         print("view page in Chromium: all checks passed")
         return 0
     except Failure as e:
