@@ -1,0 +1,132 @@
+/*
+ * gait_internal.h - what the gait's files share (private to gait.c and
+ * gait_governor.c): the gait tables' type, the per-tick context the stages
+ * pass along, and the small arithmetic helpers of the hot paths (inline).
+ * The model and the notation are at the top of gait.c.
+ */
+#ifndef XGO_CORE_GAIT_INTERNAL_H
+#define XGO_CORE_GAIT_INTERNAL_H
+
+#include <stdint.h>
+
+#include "xgo/config.h" /* XGO_TICK_HZ */
+#include "xgo/gait.h"
+
+#define TICKS_PER_S XGO_TICK_HZ
+
+/* mdeg/s -> rad/s in Q24: pi / 180000 * 2^24 * 2^16 (applied with q = 16). */
+#define K_MDEG_TO_RAD_Q24_Q16 19190957
+
+typedef struct gait_table_s {
+    uint32_t swing;         /* swing fraction S of the cycle, Q32 */
+    uint32_t inv_swing_q16; /* 1 / S, Q16 */
+    uint32_t lift[XGO_LEG_COUNT]; /* lift-off phase per leg, Q32 */
+    uint32_t k_rate;        /* D * 2^31 / TICKS_PER_S (D = 1 - S, the duty factor) */
+    uint32_t k_tau;         /* D * 2^39 / TICKS_PER_S */
+    uint32_t rate[XGO_PACE_COUNT]; /* nominal cadence per pace */
+    uint32_t rate_max;      /* cadence cap */
+    uint32_t k_half;        /* shortest period (ms) * 2^22 / 1000, see half_time_q16 */
+    uint16_t period_ms[XGO_PACE_COUNT];
+    int32_t height_um;      /* swing height */
+    uint8_t timing;         /* tables with the same timing switch at once */
+    uint8_t duty_pct;
+} gait_table_t;
+
+/* One tick's working state, filled stage by stage (xgo_gait_tick). */
+typedef struct gait_tick_s {
+    /* the command, limited (limit stage) */
+    int32_t target[3];   /* vx, vy (um/s), vyaw (mdeg/s) the ramp heads for */
+    int32_t mark;        /* mark-time swing height, 0 = off */
+    uint8_t want_type;   /* gait table asked for */
+    uint8_t pace;
+    int resting;         /* zero command: stop once every foot is home */
+    /* the table in use and the produced velocity (ramp stage) */
+    const gait_table_t *t;
+    uint32_t hx, hy;     /* half-stride budget, um */
+    int32_t vel[2];      /* produced vx, vy */
+    int32_t w_q24;       /* produced yaw rate, rad/s Q24 */
+    /* the cadence (cadence stage) */
+    uint32_t tau_q16;    /* half the stance time at the fitted cadence, s Q16 */
+    uint32_t rate;       /* phase advance of this tick */
+    int32_t vf[XGO_LEG_COUNT][2]; /* ground velocity of each planted foot */
+    /* events (phase stage) and trajectories */
+    uint8_t moved[XGO_LEG_COUNT]; /* position already set this tick (touchdown) */
+    int32_t z_um[XGO_LEG_COUNT];  /* swing heights this tick */
+} gait_tick_t;
+
+/* (a * b) / 2^q rounded, 1 <= q <= 31: xgo_mul_q without the saturation,
+ * inlined (it is the hot spot). Every use has |a * b| < 2^56 and a result
+ * well inside int32 by the clamps on the command (twice the vendor ranges),
+ * the stance (+-200 mm) and the reach box. */
+static inline int32_t mul_q(int32_t a, int32_t b, unsigned q)
+{
+    return (int32_t)(((int64_t)a * b + ((int64_t)1 << (q - 1u))) >> q);
+}
+
+static inline uint32_t abs_u(int32_t v)
+{
+    return v < 0 ? 0u - (uint32_t)v : (uint32_t)v;
+}
+
+/* Foot velocity relative to the ground for a point (x, y) of the body:
+ * v + w x p, in um/s. w in rad/s Q24. */
+static inline void foot_velocity(const int32_t v[2], int32_t w_q24, int32_t x_um, int32_t y_um,
+                                 int32_t out[2])
+{
+    out[0] = v[0] - mul_q(w_q24, y_um, 24u);
+    out[1] = v[1] + mul_q(w_q24, x_um, 24u);
+}
+
+static inline int32_t yaw_q24(int32_t w_mdeg_s)
+{
+    return mul_q(w_mdeg_s, K_MDEG_TO_RAD_Q24_Q16, 16u);
+}
+
+/* Half the time (s, Q16) a planted foot with r phase left stays down at the
+ * capped cadence of table t: r / rate_max ticks, halved (k_half does not
+ * depend on the tick rate). */
+static inline uint32_t half_time_q16(const gait_table_t *t, uint32_t r)
+{
+    return (uint32_t)(((uint64_t)r * t->k_half) >> 39);
+}
+
+/* Reach box of a stance foot (um) for yaw rate w: x fixed, y widened by the
+ * yaw share. */
+static inline int32_t gait_reach_y(int32_t w_mdeg_s)
+{
+    uint32_t yaw = abs_u(w_mdeg_s);
+    if (yaw > (uint32_t)XGO_GAIT_YAW_REF_MDEG_S) {
+        yaw = XGO_GAIT_YAW_REF_MDEG_S;
+    }
+    return XGO_GAIT_REACH_Y_UM +
+           (int32_t)(yaw * (uint32_t)XGO_GAIT_YAW_REACH_Y_UM / (uint32_t)XGO_GAIT_YAW_REF_MDEG_S);
+}
+
+/* Midpoint of the rest of a planted foot's path (um), estimated with the
+ * velocity (v, w): q = p - (v + w x p) * T/2. Under yaw the path is an arc;
+ * the ground velocity at q is the foot's mean velocity over the rest of its
+ * stance to second order, and it is linear in (v, w) for a fixed q. */
+static inline void gait_stance_midpoint(const xgo_gait_t *g, int leg, const int32_t v[2],
+                                        int32_t w_q24, uint32_t half_q16, int32_t q[2])
+{
+    int32_t f[2];
+    int32_t px = g->pos_q8[leg][0] >> 8;
+    int32_t py = g->pos_q8[leg][1] >> 8;
+    foot_velocity(v, w_q24, px, py, f);
+    q[0] = px - mul_q(f[0], (int32_t)half_q16, 16u);
+    q[1] = py - mul_q(f[1], (int32_t)half_q16, 16u);
+}
+
+/* ---- the governor (gait_governor.c) ---- */
+
+/* The velocity ramp, governed: moves g->v_ramp toward prop as far as every
+ * planted foot can absorb before its lift-off (counts governed_ticks and
+ * outside_ticks). */
+void gait_governed_ramp(xgo_gait_t *g, const gait_table_t *t, const int32_t prop[3]);
+
+/* Would the velocity v fit every planted foot under table n entered at
+ * phase p (legs lifting at p excluded)? */
+int gait_switch_fits(const xgo_gait_t *g, const gait_table_t *n, uint32_t p, uint32_t rate,
+                     const int32_t v[3]);
+
+#endif /* XGO_CORE_GAIT_INTERNAL_H */
