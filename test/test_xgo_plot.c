@@ -8,7 +8,9 @@
  * and the gait diagram's stance bars must be exactly the contact intervals
  * of the rows written, placed and sized on the time axis. Bad input gets one
  * line on stderr and exit 1 (bad data) or 2 (misuse), and leaves no output.
+ * Last, xgo-emu --record's own file of a trot (a host on the pty) is plotted.
  */
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -17,11 +19,15 @@
 #include <unistd.h>
 
 #include "emu_process.h"
+#include "serial_port.h"
 #include "unity.h"
 #include "xgo/board.h"
 
 #ifndef XGO_PLOT_PATH
 #error "XGO_PLOT_PATH must name the xgo-plot executable"
+#endif
+#ifndef XGO_EMU_PATH
+#error "XGO_EMU_PATH must name the xgo-emu executable"
 #endif
 
 #define PLOT_TIMEOUT_MS 10000
@@ -627,6 +633,35 @@ static void test_blank_line_and_empty_window_exit_1(void)
     expect_failure(window, 1, "rec.csv: no data rows between --from and --to");
 }
 
+/* The real thing: xgo-emu --record while a host on its pty makes the dog
+ * trot, then xgo-plot on that file (the two programs agree on the columns). */
+static void test_xgo_emu_record_plots(void)
+{
+    const char *emu_args[] = {"--record", g_csv, "--record-hz", "100", NULL};
+    const char *args[] = {g_csv, "-o", g_svg, NULL};
+    xgo_test_emu_t emu;
+    uint8_t full = 0xFF;
+    svg_facts_t f;
+    unsigned leg;
+    int fd;
+    xgo_test_emu_init(&emu);
+    TEST_ASSERT_EQUAL_INT(0, xgo_test_emu_spawn(&emu, XGO_EMU_PATH, emu_args, NULL));
+    TEST_ASSERT_EQUAL_INT(XGO_TEST_EMU_PTY_OK, xgo_test_emu_read_pty(&emu, 5000));
+    fd = xgo_test_port_open_like_pyserial(emu.pty, B115200);
+    TEST_ASSERT_TRUE(fd >= 0);
+    TEST_ASSERT_EQUAL_INT(0, xgo_test_write_regs(fd, 0x30, &full, 1, 1000)); /* vx: trot */
+    usleep(2000000);
+    close(fd);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(1, xgo_test_emu_stop(&emu, SIGTERM, 5000), emu.err);
+    xgo_test_emu_reset(&emu);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(0, run_plot(args), g_child.err);
+    TEST_ASSERT_GREATER_THAN_INT(0, (int)read_file(g_svg, g_doc, sizeof g_doc));
+    TEST_ASSERT_NULL(xml_check(g_doc, &f));
+    for (leg = 0; leg < XGO_LEG_COUNT; ++leg) { /* standing, then a few steps */
+        TEST_ASSERT_GREATER_OR_EQUAL_UINT_MESSAGE(3, f.nbars[leg], "stance bars of a recorded trot");
+    }
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -635,5 +670,6 @@ int main(void)
     RUN_TEST(test_misuse_exits_2_with_usage);
     RUN_TEST(test_bad_data_exits_1_with_one_line);
     RUN_TEST(test_blank_line_and_empty_window_exit_1);
+    RUN_TEST(test_xgo_emu_record_plots);
     return UNITY_END();
 }
