@@ -77,13 +77,17 @@ class Emulator:
         self.proc = subprocess.Popen([exe, "--view", listen], stdout=subprocess.PIPE,
                                      stderr=subprocess.DEVNULL)
         self.out = b""
-        self.pty = self._line("pty path")
-        view = self._line("view line")
-        if not view.startswith("view: http://") or not view.endswith("/"):
-            raise Failure("unexpected view line: " + view)
-        self.url = view[len("view: "):]
-        self.port = int(self.url.rsplit(":", 1)[1].strip("/"))
         self.fd = None
+        try:
+            self.pty = self._line("pty path")
+            view = self._line("view line")
+            if not view.startswith("view: http://") or not view.endswith("/"):
+                raise Failure("unexpected view line: " + view)
+            self.url = view[len("view: "):]
+            self.port = int(self.url.rsplit(":", 1)[1].strip("/"))
+        except Failure:
+            self.stop()  # never leave a half-started emulator behind
+            raise
 
     def _line(self, what):
         """The next stdout line (raw reads: a buffered reader would hide the
