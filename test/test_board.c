@@ -163,9 +163,9 @@ static void test_invalid_value_is_rejected_and_traced(void)
 
 static void test_vendor_writes_for_other_models_do_no_harm(void)
 {
-    static const uint8_t others[] = {0x3F, 0x5F, 0x69, 0x71, 0x72, 0x73, 0x74, 0x75, 0x76,
-                                     0x77, 0x90, 0x91, 0xA1, 0xB0, 0xB1, 0xC0};
-    const uint8_t led[3] = {255, 0, 0};
+    static const uint8_t others[] = {0x22, 0x23, 0x24, 0x5F, 0x70, 0x71, 0x72, 0x73, 0x74,
+                                     0x75, 0x76, 0x77, 0xA1, 0xB0, 0xB1, 0xC0};
+    const uint8_t servo_ctrl[2] = {0x08, 0x00};
     const uint8_t wheels[4] = {0x80, 0x80, 0x80, 0x80};
     uint32_t c[XGO_DIAG_COUNT];
     uint8_t before[256];
@@ -175,7 +175,7 @@ static void test_vendor_writes_for_other_models_do_no_harm(void)
         const uint8_t v = 0x08;
         send_write(others[i], &v, 1);
     }
-    send_write(0x69, led, sizeof led);
+    send_write(0xA1, servo_ctrl, sizeof servo_ctrl);
     send_write(0xB1, wheels, sizeof wheels);
     TEST_ASSERT_EQUAL_MEMORY(before, board.regs.mem, sizeof before);
     TEST_ASSERT_EQUAL_UINT(0, xgo_board_tx_pending(&board));
@@ -327,6 +327,35 @@ static void test_read_requests_never_change_state(void)
     TEST_ASSERT_EQUAL_MEMORY(before, board.regs.mem, 0xC4); /* all below the diagnostic block */
 }
 
+/* 1 at 0x05 (upgrade) is answered at once, one frame: 0x55 0x00, LEN 9,
+ * TYPE 0x12, ADDR 0x05, one byte that is not the bootloader's 0x55, checksum
+ * ~(0x09 + 0x12 + 0x05 + 0x00) = 0xDF, tail. */
+static void test_upgrade_request_is_answered_at_once(void)
+{
+    static const uint8_t want[] = {0x55, 0x00, 0x09, 0x12, 0x05, 0x00, 0xDF, 0x00, 0xAA};
+    const uint8_t one = 1, zero = 0;
+    uint8_t out[32];
+    send_write(0x05, &one, 1);
+    TEST_ASSERT_EQUAL_UINT(sizeof want, xgo_board_transmit(&board, out, sizeof out));
+    TEST_ASSERT_EQUAL_HEX8_ARRAY(want, out, sizeof want);
+    TEST_ASSERT_EQUAL_INT(XGO_TRACE_TX, ev_kind[1]);
+    /* 0 asks nothing; a write from the live view is no request of the host's */
+    send_write(0x05, &zero, 1);
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_board_write(&board, XGO_SOURCE_VIEW, 0x05, &one, 1));
+    TEST_ASSERT_EQUAL_UINT(0, xgo_board_tx_pending(&board));
+}
+
+static void test_turn_command_reads_turning_until_the_tick_decides(void)
+{
+    const uint8_t zero_deg[2] = {0x00, 0x00};
+    TEST_ASSERT_EQUAL_HEX8(1, wire_read1(0x3F)); /* nothing to do: done */
+    send_write(0x3F, zero_deg, 2);
+    TEST_ASSERT_EQUAL_HEX8(0, wire_read1(0x3F));
+    xgo_test_ticks(&board, 2);
+    TEST_ASSERT_EQUAL_HEX8(1, wire_read1(0x3F)); /* already there */
+    TEST_ASSERT_EQUAL_HEX8(0x80, wire_read1(0x40));
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -346,5 +375,7 @@ int main(void)
     RUN_TEST(test_mini_firmware_starts_with_M_and_is_ascii);
     RUN_TEST(test_timeout_through_the_board);
     RUN_TEST(test_read_requests_never_change_state);
+    RUN_TEST(test_upgrade_request_is_answered_at_once);
+    RUN_TEST(test_turn_command_reads_turning_until_the_tick_decides);
     return UNITY_END();
 }

@@ -697,7 +697,8 @@ static void test_trace_prints_one_line_per_frame(void)
 {
     static const uint8_t bad_sum[] = {0x55, 0x00, 0x09, 0x02, 0x50, 0x0C, 0x99, 0x00, 0xAA};
     static const uint8_t battery = 5;
-    static const uint8_t arm = 1;
+    static const uint8_t wheels_on = 1;
+    static const uint8_t turn_left_90[2] = {0x00, 0x5A};
     uint8_t reply[sizeof k_spec_reply];
     char line[512];
     char expect[64];
@@ -709,7 +710,8 @@ static void test_trace_prints_one_line_per_frame(void)
     port_write(g_port, bad_sum, sizeof bad_sum);
     port_write(g_port, k_spec_write, sizeof k_spec_write);
     write_regs(g_port, 0x01, &battery, 1); /* read-only */
-    write_regs(g_port, 0x90, &arm, 1);     /* not on the Mini */
+    write_regs(g_port, 0xB0, &wheels_on, 1); /* wheel control: not on the Mini */
+    write_regs(g_port, 0x3F, turn_left_90, 2);  /* one heading, not a foot */
     TEST_ASSERT_EQUAL_INT(0, (int)xgo_test_port_silence(g_port, 100));
     emu_stop_cleanly(SIGTERM);
 
@@ -735,7 +737,10 @@ static void test_trace_prints_one_line_per_frame(void)
     TEST_ASSERT_NOT_NULL_MESSAGE(strstr(line, "battery"), line);
     TEST_ASSERT_TRUE_MESSAGE(find_trace_line("ignored (not on the Mini)", line, sizeof line),
                              g_emu.err);
-    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(line, "rx write 0x90"), line);
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(line, "rx write 0xB0"), line);
+    TEST_ASSERT_TRUE_MESSAGE(find_trace_line("rx write 0x3F turn_to n=2 [00 5A] turn_to=005A(+90 deg)",
+                                             line, sizeof line),
+                             g_emu.err);
 }
 
 /* --profile and --battery reach the board: firmware string and battery. */

@@ -1,7 +1,8 @@
 /*
  * Register file: every documented register's access, initial value and valid
  * set; whole-frame validation; the computed views (firmware window, float32
- * attitude, diagnostic block); unmapped addresses.
+ * attitude, IMU block, int16 attitude, diagnostic block) and the turn
+ * command's two-byte write; unmapped addresses.
  */
 #include <math.h>
 #include <string.h>
@@ -146,9 +147,10 @@ static void test_multi_byte_write_applies_all(void)
 
 static void test_unmapped_addresses_read_zero_and_ignore_writes(void)
 {
-    /* What the vendor library writes on other models. */
-    static const uint8_t others[] = {0x3F, 0x5F, 0x69, 0x6A, 0x6B, 0x71, 0x72, 0x73, 0x74, 0x75,
-                                     0x76, 0x77, 0x90, 0x91, 0x92, 0x93, 0xA1, 0xB0, 0xB1, 0xC0};
+    /* What the vendor library writes on other models (move to mid, teach,
+     * arm, claw, wheels, extra servos). */
+    static const uint8_t others[] = {0x22, 0x23, 0x24, 0x5F, 0x70, 0x71, 0x72, 0x73, 0x74,
+                                     0x75, 0x76, 0x77, 0xA1, 0xB0, 0xB1, 0xC0};
     size_t i;
     for (i = 0; i < sizeof others; i++) {
         const uint8_t v = 0x5A;
@@ -385,6 +387,143 @@ static void test_table_is_consistent(void)
     TEST_ASSERT_NULL(xgo_reg_table_entry(xgo_reg_table_size()));
 }
 
+/* The current vendor library's registers the Mini and Lite answer (issue 11):
+ * upgrade, set origin, turn to heading, the IMU views, LED, I/O. */
+static const spec_reg_t k_vendor[] = {
+    {0x05, XGO_ACCESS_W, 0x00},  {0x06, XGO_ACCESS_W, 0x00},  {0x3F, XGO_ACCESS_RW, 0x01},
+    {0x65, XGO_ACCESS_R, 0x00},  {0x66, XGO_ACCESS_R, 0x00},  {0x67, XGO_ACCESS_R, 0x00},
+    {0x68, XGO_ACCESS_R, 0x00},  {0x69, XGO_ACCESS_RW, 0x00}, {0x6A, XGO_ACCESS_RW, 0x00},
+    {0x6B, XGO_ACCESS_RW, 0x00}, {0x90, XGO_ACCESS_RW, 0x00}, {0x91, XGO_ACCESS_RW, 0x00},
+    {0x92, XGO_ACCESS_RW, 0x00}, {0x93, XGO_ACCESS_RW, 0x00},
+};
+
+static void test_vendor_registers_have_their_access_and_initial_value(void)
+{
+    size_t i;
+    for (i = 0; i < sizeof k_vendor / sizeof k_vendor[0]; i++) {
+        const xgo_reg_desc_t *d = xgo_reg_find(k_vendor[i].addr);
+        TEST_ASSERT_NOT_NULL_MESSAGE(d, "register missing from the table");
+        TEST_ASSERT_EQUAL_UINT8_MESSAGE(k_vendor[i].access, d->access, d->name);
+        TEST_ASSERT_EQUAL_HEX8_MESSAGE(k_vendor[i].initial, regs.mem[k_vendor[i].addr], d->name);
+    }
+}
+
+static void test_upgrade_and_origin_take_0_or_1(void)
+{
+    const uint8_t two = 2, one = 1;
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_BAD_VALUE, xgo_regs_write(&regs, 0x05, &two, 1));
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_BAD_VALUE, xgo_regs_write(&regs, 0x06, &two, 1));
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_write(&regs, 0x05, &one, 1));
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_write(&regs, 0x06, &one, 1));
+    TEST_ASSERT_EQUAL_HEX8(1, read1(0x05));
+    TEST_ASSERT_TRUE(xgo_regs_take_written(&regs, 0x06));
+}
+
+static void test_led_and_io_keep_what_was_written(void)
+{
+    const uint8_t rgb[3] = {0x12, 0x34, 0x56}, io[4] = {200, 1, 77, 0};
+    uint8_t back[4];
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_write(&regs, 0x69, rgb, sizeof rgb));
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_read(&regs, 0x69, 3, back));
+    TEST_ASSERT_EQUAL_HEX8_ARRAY(rgb, back, 3);
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_write(&regs, 0x90, io, sizeof io));
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_read(&regs, 0x90, 4, back));
+    TEST_ASSERT_EQUAL_HEX8_ARRAY(io, back, 4);
+    TEST_ASSERT_EQUAL_UINT32(0, regs.stats.ignored_unmapped);
+    /* a colour is written from its first byte */
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_BAD_VALUE, xgo_regs_write(&regs, 0x6A, rgb, 1));
+}
+
+static void test_turn_to_write_is_one_command(void)
+{
+    const uint8_t left90[2] = {0x00, 0x5A}, right90[2] = {0xFF, 0xA6};
+    const uint8_t action_and_turn[3] = {0, 0x01, 0x0E}; /* 0x3E, then 270 degrees */
+    const uint8_t turn_and_leg1_y[3] = {0x00, 0x2D, 0x99};
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_write(&regs, 0x3F, left90, 2));
+    TEST_ASSERT_EQUAL_INT(90, xgo_regs_turn_to_deg(&regs));
+    TEST_ASSERT_EQUAL_HEX8(0, read1(0x3F));        /* turning until the board says done */
+    TEST_ASSERT_EQUAL_HEX8(0x80, read1(0x40));     /* leg 1 x untouched ... */
+    TEST_ASSERT_FALSE(xgo_regs_was_written(&regs, 0x40)); /* ... and not flagged */
+    TEST_ASSERT_TRUE(xgo_regs_take_written(&regs, 0x3F));
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_write(&regs, 0x3F, right90, 2));
+    TEST_ASSERT_EQUAL_INT(-90, xgo_regs_turn_to_deg(&regs));
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_write(&regs, 0x3E, action_and_turn, 3));
+    TEST_ASSERT_EQUAL_INT(270, xgo_regs_turn_to_deg(&regs));
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_write(&regs, 0x3F, turn_and_leg1_y, 3));
+    TEST_ASSERT_EQUAL_INT(45, xgo_regs_turn_to_deg(&regs));
+    TEST_ASSERT_EQUAL_HEX8(0x99, read1(0x41));     /* the third byte goes on to 0x41 */
+    TEST_ASSERT_EQUAL_HEX8(0x80, read1(0x40));
+}
+
+static void test_half_a_heading_is_rejected(void)
+{
+    const uint8_t one = 0x00, action_then_half_heading[2] = {0x00, 0x00};
+    xgo_regs_t before = regs;
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_BAD_VALUE, xgo_regs_write(&regs, 0x3F, &one, 1));
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_BAD_VALUE,
+                          xgo_regs_write(&regs, 0x3E, action_then_half_heading, 2));
+    TEST_ASSERT_EQUAL_MEMORY(before.mem, regs.mem, sizeof regs.mem);
+    TEST_ASSERT_EQUAL_MEMORY(before.written, regs.written, sizeof regs.written);
+    TEST_ASSERT_EQUAL_UINT32(2, regs.stats.rejected_value);
+}
+
+static int16_t le16(const uint8_t *p)
+{
+    return (int16_t)(uint16_t)(p[0] | (unsigned)p[1] << 8);
+}
+
+static float le_float(const uint8_t *p)
+{
+    float f;
+    memcpy(&f, p, 4); /* host is little-endian (x86-64 / ARM) */
+    return f;
+}
+
+static void test_imu_block_is_accel_gyro_int16_then_float_angles(void)
+{
+    const int16_t accel[3] = {-1234, 567, 16384}, gyro[3] = {-32768, 1, 32767};
+    uint8_t out[XGO_IMU_BLOCK_LEN + 2], shorter[6];
+    size_t i;
+    xgo_regs_set_attitude(&regs, 12340, -5500, 179999);
+    xgo_regs_set_inertial(&regs, accel, gyro);
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_read(&regs, 0x65, sizeof out, out));
+    for (i = 0; i < 3; i++) {
+        TEST_ASSERT_EQUAL_INT16(accel[i], le16(&out[2 * i]));
+        TEST_ASSERT_EQUAL_INT16(gyro[i], le16(&out[6 + 2 * i]));
+    }
+    TEST_ASSERT_DOUBLE_WITHIN(1e-4, 12.34, le_float(&out[12]));
+    TEST_ASSERT_DOUBLE_WITHIN(1e-4, -5.5, le_float(&out[16]));
+    TEST_ASSERT_DOUBLE_WITHIN(1e-3, 179.999, le_float(&out[20]));
+    TEST_ASSERT_EQUAL_HEX8(regs.mem[0x65 + 24], out[24]); /* past the block: flat */
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_read(&regs, 0x65, sizeof shorter, shorter));
+    TEST_ASSERT_EQUAL_HEX8_ARRAY(out, shorter, sizeof shorter);
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_READ_ONLY, xgo_regs_write(&regs, 0x65, out, 1));
+}
+
+static void test_int16_attitude_views_are_big_endian_centidegrees(void)
+{
+    int32_t m;
+    uint8_t out[2];
+    for (m = -200003; m <= 200003; m += 7) {
+        const double c = (double)m / 10.0;
+        const long want = (long)(c >= 0 ? floor(c + 0.5) : -floor(-c + 0.5));
+        unsigned axis;
+        xgo_regs_set_attitude(&regs, m, -m, m / 2);
+        for (axis = 0; axis < 3; axis++) {
+            const int32_t v = axis == 0 ? m : (axis == 1 ? -m : m / 2);
+            const double cv = (double)v / 10.0;
+            const long w = (long)(cv >= 0 ? floor(cv + 0.5) : -floor(-cv + 0.5));
+            TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE,
+                                  xgo_regs_read(&regs, (uint8_t)(0x66 + axis), 2, out));
+            TEST_ASSERT_EQUAL_INT(w, (int16_t)(uint16_t)(out[0] << 8 | out[1]));
+        }
+        TEST_ASSERT_EQUAL_INT(want, xgo_mdeg_to_centideg(m));
+    }
+    TEST_ASSERT_EQUAL_INT(32767, xgo_mdeg_to_centideg(INT32_MAX));
+    TEST_ASSERT_EQUAL_INT(-32767, xgo_mdeg_to_centideg(INT32_MIN));
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_READ_ONLY, xgo_regs_write(&regs, 0x66, out, 2));
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -408,5 +547,12 @@ int main(void)
     RUN_TEST(test_angle_byte_encoding_against_reference);
     RUN_TEST(test_diag_block_is_u32_little_endian_and_read_only);
     RUN_TEST(test_table_is_consistent);
+    RUN_TEST(test_vendor_registers_have_their_access_and_initial_value);
+    RUN_TEST(test_upgrade_and_origin_take_0_or_1);
+    RUN_TEST(test_led_and_io_keep_what_was_written);
+    RUN_TEST(test_turn_to_write_is_one_command);
+    RUN_TEST(test_half_a_heading_is_rejected);
+    RUN_TEST(test_imu_block_is_accel_gyro_int16_then_float_angles);
+    RUN_TEST(test_int16_attitude_views_are_big_endian_centidegrees);
     return UNITY_END();
 }

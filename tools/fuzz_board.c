@@ -22,7 +22,7 @@
 
 typedef struct {
     size_t accepted_bytes; /* bytes of frames the parser delivered */
-    size_t reads;          /* accepted read requests */
+    size_t reads;          /* accepted requests that are answered: reads, upgrade */
 } fuzz_stats_t;
 
 static void observe(void *ctx, const xgo_trace_event_t *ev)
@@ -32,8 +32,9 @@ static void observe(void *ctx, const xgo_trace_event_t *ev)
         return;
     }
     s->accepted_bytes += ev->frame->len + XGO_FRAME_OVERHEAD;
-    if (ev->frame->type == XGO_TYPE_READ) {
-        s->reads++;
+    if (ev->frame->type == XGO_TYPE_READ ||
+        (ev->kind == XGO_TRACE_RX && xgo_frame_asks_upgrade(ev->frame))) {
+        s->reads++; /* a request that is answered */
     }
 }
 

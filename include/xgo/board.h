@@ -11,7 +11,8 @@
  *
  * Time is whatever the caller says it is (virtual in tests, a monotonic clock
  * in xgo-emu, a hardware timer on an MCU). The board never sends a frame that
- * was not asked for: only read requests produce output.
+ * was not asked for: only read requests, and a request to upgrade the
+ * firmware (1 written to 0x05, answered XGO_UPGRADE_ANSWER), produce output.
  *
  * Portable: no OS calls, no heap, no globals, no floating point.
  */
@@ -80,6 +81,16 @@ typedef struct xgo_board_s {
     xgo_trace_fn trace;
     void *trace_ctx;
 } xgo_board_t;
+
+/* The answer (one byte at 0x05, TYPE 0x12) to an upgrade request from the
+ * wire: not the 0x55 with which a real bootloader would take the firmware
+ * image, so the vendor library reports the refusal at once and keeps its
+ * port at 115200. */
+#define XGO_UPGRADE_ANSWER 0x00u
+
+/* 1 if f is a write frame that asks for a firmware upgrade (1 at 0x05): the
+ * one write the board answers. */
+int xgo_frame_asks_upgrade(const xgo_frame_t *f);
 
 /* Fills cfg with the defaults: Mini, 20 ms parser timeout, battery 100 %. */
 void xgo_board_default_config(xgo_board_config_t *cfg);

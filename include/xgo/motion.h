@@ -23,6 +23,8 @@
 #include "xgo/profile.h"
 #include "xgo/actions.h"
 #include "xgo/gait.h"
+#include "xgo/heading.h"
+#include "xgo/inertial.h"
 #include "xgo/kinematics.h"
 #include "xgo/odometry.h"
 #include "xgo/regs.h"
@@ -71,6 +73,8 @@ typedef struct xgo_motion_s {
     xgo_vec3_t feet_body_um[XGO_LEG_COUNT]; /* measured: FK of the actual joints,
                                                body frame (z up) */
     xgo_odometry_t odom;      /* world pose from the planted feet */
+    xgo_heading_t heading;    /* turn to heading (0x3F) and its origin (0x06) */
+    xgo_inertial_t inertial;  /* accelerometer and gyroscope (0x65) */
     struct {                  /* last body + leg IK solve (skipped when unchanged) */
         xgo_body_pose_t pose;
         xgo_vec3_t feet[XGO_LEG_COUNT];     /* machine frame, as asked */

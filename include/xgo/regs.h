@@ -3,13 +3,20 @@
  *
  * One descriptor per documented register (XGO_REG_LIST below) gives its
  * address, width, host access, initial value and valid set. The file is a flat
- * 256-byte image plus three computed views that a flat array cannot give:
+ * 256-byte image plus computed views that a flat array cannot give, each
+ * chosen by the address a read starts at (docs/registers.md):
  *   - 0x07 firmware string: a read that starts at 0x07 returns the 10-byte
  *     string, although 0x09 on its own is the gait type register;
  *   - 0x62..0x64 roll/pitch/yaw: a read of 4+ bytes starting at one of them
  *     returns that angle as float32 little-endian degrees (built with integer
- *     arithmetic), a shorter read the one-byte encoding (docs/registers.md);
+ *     arithmetic), a shorter read the one-byte encoding;
+ *   - 0x65 IMU block: 24 bytes, acceleration and angular rate (int16 LE) and
+ *     the three angles (float32 LE degrees), xgo_regs_set_inertial();
+ *   - 0x66..0x68 roll/pitch/yaw as int16 big-endian, 0.01 degree;
  *   - 0xC4..0xFF diagnostic counters, uint32 little-endian.
+ * One write view: 0x3F (turn to heading) takes two bytes, an int16
+ * big-endian heading in degrees, as one command; the second byte does not go
+ * to 0x40. A read of 0x3F gives 0 while turning, 1 when done.
  *
  * A write is validated whole before anything changes (docs/decisions.md).
  * Portable: no OS calls, no heap, no globals, no floating point.
@@ -57,6 +64,8 @@ typedef enum xgo_valid_e {
     X(VERSION, 0x02, 1, R, 0, 0x00, ANY, 0, 0, "version")                               \
     X(PERFORM, 0x03, 1, W, 0, 0x00, RANGE, 0, 1, "perform")                             \
     X(CALIBRATION, 0x04, 1, W, 0, 0x00, RANGE, 0, 1, "calibration")                     \
+    X(UPGRADE, 0x05, 1, W, 0, 0x00, RANGE, 0, 1, "upgrade")                             \
+    X(SET_ORIGIN, 0x06, 1, W, AUTO_CLEAR, 0x00, RANGE, 0, 1, "set_origin")              \
     X(GAIT_TYPE, 0x09, 1, RW, 0, 0x00, RANGE, 0, 3, "gait_type")                        \
     X(FIRMWARE, 0x07, 10, R, COMPUTED, 0x00, ANY, 0, 0, "firmware")                     \
     X(BT_NAME, 0x13, 10, W, NONVOLATILE, 0x00, ASCII, 0, 0, "bt_name")                  \
@@ -77,6 +86,7 @@ typedef enum xgo_valid_e {
     X(MARK_TIME, 0x3C, 1, RW, 0, 0x00, ANY, 0, 0, "mark_time")                          \
     X(MOVE_MODE, 0x3D, 1, RW, 0, 0x00, RANGE, 0, 2, "move_mode")                        \
     X(ACTION, 0x3E, 1, W, 0, 0x00, ACTION, 0, 0, "action")                              \
+    X(TURN_TO, 0x3F, 1, RW, 0, 0x01, ANY, 0, 0, "turn_to")                              \
     X(LEG1_X, 0x40, 1, RW, 0, 0x80, ANY, 0, 0, "leg1_x")                                \
     X(LEG1_Y, 0x41, 1, RW, 0, 0x80, ANY, 0, 0, "leg1_y")                                \
     X(LEG1_Z, 0x42, 1, RW, 0, 0x80, ANY, 0, 0, "leg1_z")                                \
@@ -107,9 +117,18 @@ typedef enum xgo_valid_e {
     X(IMU_ROLL, 0x62, 1, R, COMPUTED, 0x80, ANY, 0, 0, "imu_roll")                      \
     X(IMU_PITCH, 0x63, 1, R, COMPUTED, 0x80, ANY, 0, 0, "imu_pitch")                    \
     X(IMU_YAW, 0x64, 1, R, COMPUTED, 0x80, ANY, 0, 0, "imu_yaw")                        \
+    X(IMU_BLOCK, 0x65, 1, R, COMPUTED, 0x00, ANY, 0, 0, "imu_block")                    \
+    X(IMU_ROLL16, 0x66, 1, R, COMPUTED, 0x00, ANY, 0, 0, "imu_roll16")                  \
+    X(IMU_PITCH16, 0x67, 1, R, COMPUTED, 0x00, ANY, 0, 0, "imu_pitch16")                \
+    X(IMU_YAW16, 0x68, 1, R, COMPUTED, 0x00, ANY, 0, 0, "imu_yaw16")                    \
+    X(LED, 0x69, 3, RW, 0, 0x00, ANY, 0, 0, "led")                                      \
     X(PERIOD_X, 0x80, 1, RW, 0, 0x00, ANY, 0, 0, "period_x")                            \
     X(PERIOD_Y, 0x81, 1, RW, 0, 0x00, ANY, 0, 0, "period_y")                            \
     X(PERIOD_Z, 0x82, 1, RW, 0, 0x00, ANY, 0, 0, "period_z")                            \
+    X(ANALOG_OUT, 0x90, 1, RW, 0, 0x00, ANY, 0, 0, "analog_out")                        \
+    X(DIGITAL_OUT, 0x91, 1, RW, 0, 0x00, ANY, 0, 0, "digital_out")                      \
+    X(ANALOG_IN, 0x92, 1, RW, 0, 0x00, ANY, 0, 0, "analog_in")                          \
+    X(DIGITAL_IN, 0x93, 1, RW, 0, 0x00, ANY, 0, 0, "digital_in")                        \
     X(DIAG, 0xC4, 60, R, COMPUTED, 0x00, ANY, 0, 0, "diag")
 
 /* Register addresses: XGO_REG_VX == 0x30, ... */
@@ -122,6 +141,8 @@ enum xgo_reg_addr_e {
 
 #define XGO_FIRMWARE_LEN 10u
 #define XGO_BT_NAME_LEN 10u
+#define XGO_IMU_BLOCK_LEN 24u  /* the 0x65 view */
+#define XGO_TURN_TO_LEN 2u     /* the 0x3F write view */
 
 /* Diagnostic block at 0xC4..0xFF: room for XGO_DIAG_SLOTS uint32 little-endian
  * counters, XGO_DIAG_COUNT of them used, in this order (docs/registers.md);
@@ -179,6 +200,9 @@ typedef struct xgo_regs_s {
     uint8_t written[XGO_REG_COUNT / 8]; /* bit per address: written since last taken */
     char firmware[XGO_FIRMWARE_LEN]; /* NUL padded ASCII */
     int32_t attitude_mdeg[3];        /* roll, pitch, yaw in millidegrees */
+    int16_t accel[3];                /* IMU block: acceleration, 16384 = 1 g */
+    int16_t gyro[3];                 /* IMU block: angular rate, 16.4 = 1 deg/s */
+    uint8_t turn_to[2];              /* last heading command at 0x3F, int16 BE */
     xgo_regs_stats_t stats;
 } xgo_regs_t;
 
@@ -217,6 +241,13 @@ int xgo_regs_was_written(const xgo_regs_t *r, uint8_t addr);
 /* Board-side updates of computed registers. */
 void xgo_regs_set_attitude(xgo_regs_t *r, int32_t roll_mdeg, int32_t pitch_mdeg, int32_t yaw_mdeg);
 void xgo_regs_set_diag(xgo_regs_t *r, const uint32_t counters[XGO_DIAG_COUNT]);
+/* The IMU block's acceleration (16384 LSB = 1 g) and angular rate (16.4 LSB
+ * = 1 deg/s), body axes x forward, y left, z up (docs/motion.md). */
+void xgo_regs_set_inertial(xgo_regs_t *r, const int16_t accel[3], const int16_t gyro[3]);
+
+/* The heading of the last turn command written to 0x3F, in degrees. */
+int16_t xgo_regs_turn_to_deg(const xgo_regs_t *r);
+
 
 /* Register 0x20 (unload): 0x00 load all, 0x01 unload all, 0x11..0x14 unload
  * leg 1..4, 0x21..0x24 load leg 1..4 - the one definition of that set. */

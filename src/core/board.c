@@ -98,6 +98,31 @@ static uint8_t count_unmapped(const xgo_regs_t *r, const xgo_frame_t *f)
     return n;
 }
 
+/* Queue one reply frame (TYPE 0x12) whole, or count the overflow. */
+static void send_reply(xgo_board_t *b, uint8_t addr, const uint8_t *data, size_t n)
+{
+    uint8_t frame_bytes[XGO_FRAME_MAX_LEN];
+    xgo_frame_t reply;
+    const size_t size = xgo_frame_encode(XGO_TYPE_READ_REPLY, addr, data, n, frame_bytes,
+                                         sizeof frame_bytes);
+    reply.type = XGO_TYPE_READ_REPLY;
+    reply.addr = addr;
+    reply.len = (uint8_t)n;
+    reply.data = data;
+    if (!tx_push(b, frame_bytes, size)) {
+        b->tx_overflows++;
+        emit(b, XGO_TRACE_DROP, XGO_DROP_TX_OVERFLOW, &reply, NULL, 0, 0);
+        return;
+    }
+    emit(b, XGO_TRACE_TX, XGO_DROP_NONE, &reply, NULL, 0, 0);
+}
+
+int xgo_frame_asks_upgrade(const xgo_frame_t *f)
+{
+    const unsigned at = XGO_REG_UPGRADE - (unsigned)f->addr; /* wraps when addr > 0x05 */
+    return f->type != XGO_TYPE_READ && at < f->len && f->data[at] == 1u;
+}
+
 static xgo_drop_reason_t handle_write(xgo_board_t *b, const xgo_frame_t *f)
 {
     const uint8_t unmapped = count_unmapped(&b->regs, f);
@@ -107,17 +132,20 @@ static xgo_drop_reason_t handle_write(xgo_board_t *b, const xgo_frame_t *f)
         return why;
     }
     emit(b, XGO_TRACE_RX, XGO_DROP_NONE, f, NULL, 0, unmapped);
+    if (b->source == XGO_SOURCE_WIRE && xgo_frame_asks_upgrade(f)) {
+        /* The host waits for an answer; an emulator has no bootloader to
+         * hand over to, so it says no at once (docs/decisions.md). */
+        static const uint8_t answer = XGO_UPGRADE_ANSWER;
+        send_reply(b, XGO_REG_UPGRADE, &answer, 1);
+    }
     return XGO_DROP_NONE;
 }
 
 static void handle_read(xgo_board_t *b, const xgo_frame_t *f)
 {
     uint8_t data[XGO_FRAME_MAX_DATA];
-    uint8_t frame_bytes[XGO_FRAME_MAX_LEN];
     uint32_t counters[XGO_DIAG_COUNT];
     const size_t n = f->data[0];
-    xgo_frame_t reply;
-    size_t size;
 
     emit(b, XGO_TRACE_RX, XGO_DROP_NONE, f, NULL, 0, 0);
     xgo_board_counters(b, counters);
@@ -125,18 +153,7 @@ static void handle_read(xgo_board_t *b, const xgo_frame_t *f)
     if (xgo_regs_read(&b->regs, f->addr, n, data) != XGO_DROP_NONE) {
         return; /* the parser already rejects such ranges */
     }
-    size = xgo_frame_encode(XGO_TYPE_READ_REPLY, f->addr, data, n, frame_bytes,
-                            sizeof frame_bytes);
-    reply.type = XGO_TYPE_READ_REPLY;
-    reply.addr = f->addr;
-    reply.len = (uint8_t)n;
-    reply.data = data;
-    if (!tx_push(b, frame_bytes, size)) {
-        b->tx_overflows++;
-        emit(b, XGO_TRACE_DROP, XGO_DROP_TX_OVERFLOW, &reply, NULL, 0, 0);
-        return;
-    }
-    emit(b, XGO_TRACE_TX, XGO_DROP_NONE, &reply, NULL, 0, 0);
+    send_reply(b, f->addr, data, n);
 }
 
 static void on_frame(void *ctx, const xgo_frame_t *f)

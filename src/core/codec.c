@@ -208,6 +208,13 @@ uint32_t xgo_mdeg_to_float32_bits(int32_t mdeg)
     return sign | ((uint32_t)exponent << 23) | ((uint32_t)q & 0x7FFFFFu);
 }
 
+int16_t xgo_mdeg_to_centideg(int32_t mdeg)
+{
+    const int32_t limit = 327674; /* beyond it the rounded value leaves int16 */
+    const int32_t m = mdeg > limit ? limit : (mdeg < -limit ? -limit : mdeg);
+    return (int16_t)((m >= 0 ? m + 5 : m - 5) / 10);
+}
+
 /* ------------------------------------------------------------ motion commands */
 
 int32_t xgo_period_byte_to_ms(uint8_t b)

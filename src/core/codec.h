@@ -8,6 +8,7 @@
  *   servo, foot, body          joint angles, feet, body pose <-> bytes
  *   attitude 0x62..0x64        xgo_angle_to_byte (1-byte read),
  *                              xgo_mdeg_to_float32_bits (4-byte read)
+ *   attitude 0x66..0x68        xgo_mdeg_to_centideg (int16 view)
  *   velocity 0x30..0x32, periods, mark time 0x3C, servo speed 0x5C
  *   unload 0x20                xgo_unload_decode (public: xgo/regs.h)
  *
@@ -86,6 +87,9 @@ void xgo_bytes_to_body_pose(const xgo_profile_t *p, const uint8_t in[6], xgo_bod
 
 uint8_t xgo_angle_to_byte(int32_t mdeg);         /* 0x80 = 0, 1 LSB = 180/128 deg */
 uint32_t xgo_mdeg_to_float32_bits(int32_t mdeg); /* IEEE-754 bits of mdeg / 1000 */
+/* The int16 views 0x66..0x68: 0.01 degree, rounded half away from zero,
+ * saturated at the int16 range. */
+int16_t xgo_mdeg_to_centideg(int32_t mdeg);
 
 /* ------------------------------------------------------------ motion commands */
 

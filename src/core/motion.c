@@ -70,6 +70,8 @@ void xgo_motion_init(xgo_motion_t *m, const xgo_profile_t *profile, uint8_t batt
     xgo_imu_init(&m->imu);
     xgo_battery_init(&m->battery, battery_pct);
     xgo_odometry_init(&m->odom);
+    xgo_heading_init(&m->heading);
+    xgo_inertial_init(&m->inertial);
     m->contact = 0x0Fu;
     measure_feet(m, 1);
 }
@@ -129,6 +131,7 @@ static void reset_all(xgo_motion_t *m, xgo_regs_t *r)
     m->group_mode = XGO_MODE_WHOLE_UNIT;
     memset(m->periodic_phase, 0, sizeof m->periodic_phase);
     memset(m->stab_mdeg, 0, sizeof m->stab_mdeg);
+    xgo_heading_init(&m->heading);
     start_action(m, XGO_ACTION_RESET);
 }
 
@@ -254,13 +257,47 @@ static int take_action_writes(xgo_motion_t *m, xgo_regs_t *r)
 
 /* Writes within one tick apply in this order (docs/motion.md); a reset
  * comes last so it wins. */
+/* Turn to heading (0x3F) and its origin (0x06). Any other motion command
+ * ends a turn in progress: velocities, an action, the standing posture, a
+ * mode other than whole unit; a turn command in the same tick wins. */
+static void take_heading_writes(xgo_motion_t *m, xgo_regs_t *r, int cancel)
+{
+    if (cancel || m->group_mode != XGO_MODE_WHOLE_UNIT || m->calibration) {
+        xgo_heading_cancel(&m->heading);
+    }
+    if (xgo_regs_take_written(r, XGO_REG_SET_ORIGIN)) {
+        if (xgo_regs_get(r, XGO_REG_SET_ORIGIN) == 1) {
+            xgo_heading_set_origin(&m->heading, m->imu.yaw_mdeg);
+        }
+        xgo_regs_set(r, XGO_REG_SET_ORIGIN, 0);
+    }
+    if (xgo_regs_take_written(r, XGO_REG_TURN_TO)) {
+        xgo_heading_start(&m->heading, xgo_regs_turn_to_deg(r));
+        m->group_mode = XGO_MODE_WHOLE_UNIT;
+    }
+}
+
+static int ends_a_turn(const xgo_regs_t *r)
+{
+    static const uint8_t regs[] = {XGO_REG_VX, XGO_REG_VY, XGO_REG_VYAW, XGO_REG_ACTION,
+                                   XGO_REG_STAND};
+    unsigned i;
+    int any = 0;
+    for (i = 0; i < sizeof regs; i++) {
+        any |= xgo_regs_was_written(r, regs[i]);
+    }
+    return any;
+}
+
 static void handle_writes(xgo_motion_t *m, xgo_regs_t *r)
 {
+    const int cancel = ends_a_turn(r);
     take_group_writes(m, r);
     take_debug_writes(m, r);
     if (take_action_writes(m, r)) {
         reset_all(m, r);
     }
+    take_heading_writes(m, r, cancel);
 }
 
 /* ------------------------------------------------------------ whole unit */
@@ -404,6 +441,11 @@ static int whole_unit_targets(xgo_motion_t *m, const xgo_regs_t *r, int32_t q[XG
     } else {
         xgo_gait_command_t cmd;
         gait_command_from_registers(m, r, &cmd);
+        if (xgo_heading_active(&m->heading)) {
+            /* turning in place: the heading controller owns the yaw rate */
+            cmd.vx_um_s = cmd.vy_um_s = cmd.mark_time_um = 0;
+            cmd.vyaw_mdeg_s = xgo_heading_tick(&m->heading, m->imu.yaw_mdeg, m->gait.vyaw_mdeg_s);
+        }
         xgo_gait_tick(&m->gait, &cmd);
         m->contact = 0;
         for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
@@ -508,6 +550,19 @@ void xgo_motion_publish(const xgo_motion_t *m, xgo_regs_t *r)
     xgo_regs_set(r, XGO_REG_ACTION, m->action_id);
     xgo_regs_set(r, XGO_REG_PERFORM, m->perform);
     xgo_regs_set_attitude(r, m->imu.roll_mdeg, m->imu.pitch_mdeg, m->imu.yaw_mdeg);
+    xgo_regs_set_inertial(r, m->inertial.accel, m->inertial.gyro);
+    xgo_regs_set(r, XGO_REG_TURN_TO, xgo_heading_done(&m->heading));
+}
+
+/* The accelerometer and gyroscope see the body where the odometry and the
+ * body pose put it, with the attitude the IMU reports. */
+static void inertial_tick(xgo_motion_t *m)
+{
+    const int32_t att[3] = {m->imu.roll_mdeg, m->imu.pitch_mdeg, m->imu.yaw_mdeg};
+    int64_t body_q8[3];
+    xgo_bam_t heading;
+    xgo_inertial_body_position(&m->odom, &m->pose, body_q8, &heading);
+    xgo_inertial_tick(&m->inertial, body_q8, heading, att);
 }
 
 void xgo_motion_tick(xgo_motion_t *m, xgo_regs_t *r)
@@ -542,6 +597,7 @@ void xgo_motion_tick(xgo_motion_t *m, xgo_regs_t *r)
     xgo_servos_tick(&m->servos, step);
     measure_feet(m, m->mode == XGO_MODE_WHOLE_UNIT || m->mode == XGO_MODE_ACTION);
     xgo_imu_tick(&m->imu, m->pose.roll_mdeg, m->pose.pitch_mdeg, m->pose.yaw_mdeg, yaw_rate);
+    inertial_tick(m);
     xgo_battery_tick(&m->battery, busy);
     if (m->mode == XGO_MODE_ACTION && m->action_id == 0) {
         m->mode = m->group_mode;

@@ -161,42 +161,64 @@ static const xgo_reg_desc_t *desc_at(const xgo_regs_t *r, unsigned addr)
     return r->index[addr] == UNMAPPED ? NULL : &k_regs[r->index[addr]];
 }
 
-xgo_drop_reason_t xgo_regs_write(xgo_regs_t *r, uint8_t addr, const uint8_t *data, size_t n)
+/* The turn command at 0x3F is two bytes wide but the foot register 0x40
+ * follows it: inside a write frame, the byte after 0x3F belongs to the
+ * command (docs/registers.md). */
+static int turn_to_at(uint8_t addr, size_t i)
+{
+    return (unsigned)addr + (unsigned)i == XGO_REG_TURN_TO;
+}
+
+/* Pass 1 of a write: everything checked, nothing changed. */
+static xgo_drop_reason_t validate_write(xgo_regs_t *r, uint8_t addr, const uint8_t *data, size_t n,
+                                        int *unmapped)
 {
     size_t i;
-    int unmapped = 0;
-
-    if (n == 0 || n > XGO_FRAME_MAX_DATA || (size_t)addr + n > XGO_REG_COUNT) {
-        return XGO_DROP_BAD_RANGE;
-    }
-    /* Pass 1: validate everything, change nothing. */
     for (i = 0; i < n; i++) {
         const unsigned a = (unsigned)addr + (unsigned)i;
         const xgo_reg_desc_t *d = desc_at(r, a);
         if (d == NULL) {
-            unmapped = 1;
+            *unmapped = 1;
             continue;
         }
         if ((d->access & XGO_ACCESS_W) == 0) {
             r->stats.rejected_read_only++;
             return XGO_DROP_READ_ONLY;
         }
+        if (turn_to_at(addr, i)) {
+            if (i + XGO_TURN_TO_LEN > n) { /* half a heading */
+                r->stats.rejected_value++;
+                return XGO_DROP_BAD_VALUE;
+            }
+            i += XGO_TURN_TO_LEN - 1u; /* any int16 is a heading */
+            continue;
+        }
         /* A multi-byte register is written from its first byte (a name
          * written from the middle has no meaning). */
-        if (d->width > 1 && a != d->addr && i == 0) {
-            r->stats.rejected_value++;
-            return XGO_DROP_BAD_VALUE;
-        }
-        if (!xgo_reg_value_valid(d, data[i])) {
+        if ((d->width > 1 && a != d->addr && i == 0) || !xgo_reg_value_valid(d, data[i])) {
             r->stats.rejected_value++;
             return XGO_DROP_BAD_VALUE;
         }
     }
-    /* Pass 2: apply. */
+    return XGO_DROP_NONE;
+}
+
+/* Pass 2: apply a validated write. */
+static void apply_write(xgo_regs_t *r, uint8_t addr, const uint8_t *data, size_t n)
+{
+    size_t i;
     for (i = 0; i < n; i++) {
         const unsigned a = (unsigned)addr + (unsigned)i;
         const xgo_reg_desc_t *d = desc_at(r, a);
         if (d == NULL) {
+            continue;
+        }
+        if (turn_to_at(addr, i)) {
+            r->turn_to[0] = data[i];
+            r->turn_to[1] = data[i + 1u];
+            r->mem[a] = 0; /* turning, until the board says it is there */
+            mark_written(r, (uint8_t)a);
+            i += XGO_TURN_TO_LEN - 1u;
             continue;
         }
         if (d->width > 1 && a == d->addr) {
@@ -206,11 +228,31 @@ xgo_drop_reason_t xgo_regs_write(xgo_regs_t *r, uint8_t addr, const uint8_t *dat
         r->mem[a] = data[i];
         mark_written(r, (uint8_t)a);
     }
+}
+
+xgo_drop_reason_t xgo_regs_write(xgo_regs_t *r, uint8_t addr, const uint8_t *data, size_t n)
+{
+    int unmapped = 0;
+    xgo_drop_reason_t why;
+
+    if (n == 0 || n > XGO_FRAME_MAX_DATA || (size_t)addr + n > XGO_REG_COUNT) {
+        return XGO_DROP_BAD_RANGE;
+    }
+    why = validate_write(r, addr, data, n, &unmapped);
+    if (why != XGO_DROP_NONE) {
+        return why;
+    }
+    apply_write(r, addr, data, n);
     if (unmapped) {
         r->stats.ignored_unmapped++;
     }
     r->stats.writes_ok++;
     return XGO_DROP_NONE;
+}
+
+int16_t xgo_regs_turn_to_deg(const xgo_regs_t *r)
+{
+    return (int16_t)(uint16_t)(((unsigned)r->turn_to[0] << 8) | r->turn_to[1]);
 }
 
 static void put_u32_le(uint8_t *out, uint32_t v)
@@ -221,22 +263,64 @@ static void put_u32_le(uint8_t *out, uint32_t v)
     out[3] = (uint8_t)(v >> 24);
 }
 
+static void put_u16_le(uint8_t *out, int16_t v)
+{
+    out[0] = (uint8_t)(uint16_t)v;
+    out[1] = (uint8_t)((uint16_t)v >> 8);
+}
+
+/* The 0x65 view: acceleration x, y, z and angular rate x, y, z as int16
+ * little-endian, then roll, pitch, yaw as float32 little-endian degrees. */
+static void imu_block(const xgo_regs_t *r, uint8_t out[XGO_IMU_BLOCK_LEN])
+{
+    unsigned i;
+    for (i = 0; i < 3; i++) {
+        put_u16_le(&out[2u * i], r->accel[i]);
+        put_u16_le(&out[6u + 2u * i], r->gyro[i]);
+        put_u32_le(&out[12u + 4u * i], xgo_mdeg_to_float32_bits(r->attitude_mdeg[i]));
+    }
+}
+
+/* Views chosen by the first address of a read; they replace the start of
+ * the flat image's bytes (the rest of a longer read stays flat). */
+static void apply_read_views(const xgo_regs_t *r, uint8_t addr, size_t n, uint8_t *out)
+{
+    uint8_t view[XGO_IMU_BLOCK_LEN];
+    size_t len = 0, i;
+    if (addr == XGO_REG_FIRMWARE) {
+        memcpy(view, r->firmware, XGO_FIRMWARE_LEN);
+        len = XGO_FIRMWARE_LEN;
+    } else if (addr >= XGO_REG_IMU_ROLL && addr <= XGO_REG_IMU_YAW && n >= 4) {
+        put_u32_le(view, xgo_mdeg_to_float32_bits(r->attitude_mdeg[addr - XGO_REG_IMU_ROLL]));
+        len = 4;
+    } else if (addr == XGO_REG_IMU_BLOCK) {
+        imu_block(r, view);
+        len = XGO_IMU_BLOCK_LEN;
+    } else if (addr >= XGO_REG_IMU_ROLL16 && addr <= XGO_REG_IMU_YAW16) {
+        const uint16_t v = (uint16_t)xgo_mdeg_to_centideg(r->attitude_mdeg[addr - XGO_REG_IMU_ROLL16]);
+        view[0] = (uint8_t)(v >> 8); /* big-endian, as read_imu_int16 decodes */
+        view[1] = (uint8_t)v;
+        len = 2;
+    }
+    for (i = 0; i < n && i < len; i++) {
+        out[i] = view[i];
+    }
+}
+
 xgo_drop_reason_t xgo_regs_read(const xgo_regs_t *r, uint8_t addr, size_t n, uint8_t *out)
 {
     if (n == 0 || n > XGO_FRAME_MAX_DATA || (size_t)addr + n > XGO_REG_COUNT) {
         return XGO_DROP_BAD_RANGE;
     }
     memcpy(out, &r->mem[addr], n);
-    if (addr == XGO_REG_FIRMWARE) {
-        size_t i;
-        for (i = 0; i < n && i < XGO_FIRMWARE_LEN; i++) {
-            out[i] = (uint8_t)r->firmware[i];
-        }
-    }
-    if (addr >= XGO_REG_IMU_ROLL && addr <= XGO_REG_IMU_YAW && n >= 4) {
-        put_u32_le(out, xgo_mdeg_to_float32_bits(r->attitude_mdeg[addr - XGO_REG_IMU_ROLL]));
-    }
+    apply_read_views(r, addr, n, out);
     return XGO_DROP_NONE;
+}
+
+void xgo_regs_set_inertial(xgo_regs_t *r, const int16_t accel[3], const int16_t gyro[3])
+{
+    memcpy(r->accel, accel, sizeof r->accel);
+    memcpy(r->gyro, gyro, sizeof r->gyro);
 }
 
 void xgo_regs_set_attitude(xgo_regs_t *r, int32_t roll_mdeg, int32_t pitch_mdeg, int32_t yaw_mdeg)

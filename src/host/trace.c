@@ -118,6 +118,14 @@ static void xgo_host_line_write_meaning(xgo_host_line_t *l, const xgo_frame_t *f
             xgo_host_line_add(l, "\"");
             continue;
         }
+        if (addr == XGO_REG_TURN_TO && i + 1u < f->len) {
+            /* two bytes, one heading (int16 big-endian): 0x40 is not written */
+            const int heading = (int16_t)(uint16_t)(f->data[i] << 8 | f->data[i + 1u]);
+            xgo_host_line_add(l, " turn_to=%02X%02X(%+d deg)", f->data[i], f->data[i + 1u],
+                              heading);
+            i += 2;
+            continue;
+        }
         if (d == NULL) {
             xgo_host_line_add(l, " 0x%02X=%02X(ignored, not on the Mini)", addr, f->data[i]);
             i++;

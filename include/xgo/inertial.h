@@ -1,0 +1,74 @@
+/*
+ * xgo/inertial.h - the accelerometer and gyroscope behind the IMU block
+ * (register 0x65): what an MPU-6050-class sensor fixed to the body would read.
+ *
+ * Axes: the body's, x forward, y left, z up (docs/motion.md).
+ *
+ * Accelerometer: specific force, f = R^T (a + g z_up), where R is the body's
+ * attitude (R = Rz(yaw) Ry(pitch) Rx(roll), the IMU's roll and pitch, the
+ * heading of the odometry) and a the body centre's acceleration in the world:
+ * the second difference, tick to tick, of its position (leg odometry for the
+ * floor plane - walking, turning, skidding - plus the body pose's own shift
+ * and height: actions, body registers, periodic motions). A standing, level
+ * robot reads (0, 0, +1 g); nose down (positive pitch) gives x < 0, left
+ * side up (positive roll) gives y > 0. 1 g = 16384 LSB (+-2 g range),
+ * g = 9.80665 m/s^2.
+ *
+ * Gyroscope: the body's angular rate from the rate of change of the IMU's
+ * roll, pitch and yaw (the Euler rates turned into body rates), so it agrees
+ * with 0x62..0x64 as they change: turning left gives z > 0. 16.4 LSB = 1
+ * deg/s (+-2000 deg/s range).
+ *
+ * Both pass a first-order low-pass of time constant 4 ticks (8 ms at 500 Hz,
+ * about 20 Hz: a sensor's digital low-pass filter) and saturate at int16.
+ *
+ * Portable: no OS calls, no heap, no globals, no floating point.
+ */
+#ifndef XGO_INERTIAL_H
+#define XGO_INERTIAL_H
+
+#include <stdint.h>
+
+#include "xgo/fixed.h"
+#include "xgo/kinematics.h" /* xgo_body_pose_t */
+#include "xgo/odometry.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define XGO_ACCEL_LSB_PER_G 16384
+#define XGO_GYRO_LSB_PER_10_DEG_S 164 /* 16.4 LSB per deg/s */
+#define XGO_GRAVITY_UM_S2 9806650
+#define XGO_INERTIAL_FILTER_SHIFT 2   /* low-pass: 1/4 of the gap per tick */
+
+typedef struct xgo_inertial_s {
+    int64_t pos_q8[2][3];    /* body centre, world, 1/256 um: last tick, the one before */
+    int32_t att_mdeg[3];     /* last tick's roll, pitch, yaw */
+    int32_t accel_q8[3];     /* filter states, LSB * 256 */
+    int32_t gyro_q8[3];
+    uint8_t history;         /* ticks seen, up to 2 */
+    int16_t accel[3];        /* outputs, LSB */
+    int16_t gyro[3];
+} xgo_inertial_t;
+
+/* A level body at rest: accel (0, 0, 16384), gyro 0. */
+void xgo_inertial_init(xgo_inertial_t *s);
+
+/* One tick. body_q8: the body centre's position in the world (x, y, z in
+ * 1/256 um); heading: the body's yaw in that world frame; att_mdeg: the
+ * IMU's roll, pitch, yaw. The first ticks after init see no motion. */
+void xgo_inertial_tick(xgo_inertial_t *s, const int64_t body_q8[3], xgo_bam_t heading,
+                       const int32_t att_mdeg[3]);
+
+/* Where the body centre is in the odometry's world: the machine frame's
+ * position and heading plus the body pose's shift (x, y turned by the
+ * heading; z the height) and yaw. */
+void xgo_inertial_body_position(const xgo_odometry_t *o, const xgo_body_pose_t *pose,
+                                int64_t body_q8[3], xgo_bam_t *heading);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* XGO_INERTIAL_H */

@@ -1,0 +1,149 @@
+/*
+ * Accelerometer and gyroscope model (see xgo/inertial.h).
+ */
+#include "xgo/inertial.h"
+
+#include <string.h>
+
+#include "xgo/config.h"
+#include "wide.h"
+
+/* Second difference of a position in 1/256 um per tick^2 -> acceleration in
+ * LSB * 256: * XGO_TICK_HZ^2 / 256 (um/s^2) * 16384 * 256 / g, as a Q16
+ * multiplier (2.74e7 at 500 Hz). */
+#define ACCEL_Q16                                                                                 \
+    ((int32_t)(((uint64_t)XGO_TICK_HZ * XGO_TICK_HZ * XGO_ACCEL_LSB_PER_G * 65536u +              \
+                XGO_GRAVITY_UM_S2 / 2u) /                                                         \
+               XGO_GRAVITY_UM_S2))
+/* Angle change in mdeg per tick -> LSB * 256: * XGO_TICK_HZ (mdeg/s) * 16.4 /
+ * 1000 * 256, as a Q16 multiplier. */
+#define GYRO_Q16                                                                                  \
+    ((int32_t)(((uint64_t)XGO_TICK_HZ * XGO_GYRO_LSB_PER_10_DEG_S * 256u * 65536u + 5000u) /     \
+               10000u))
+/* Second differences beyond this (about 100 g at 500 Hz) saturate anyway. */
+#define D2_LIMIT_Q8 (1 << 20)
+
+static int32_t clamp32(int64_t v, int32_t lim)
+{
+    return v > lim ? lim : (v < -lim ? -lim : (int32_t)v);
+}
+
+static int16_t to_lsb(int32_t q8)
+{
+    const int32_t v = (q8 >= 0 ? q8 + 128 : q8 - 127) >> 8;
+    return (int16_t)(v > 32767 ? 32767 : (v < -32768 ? -32768 : v));
+}
+
+/* Wrap an angle difference into [-180000, 180000). */
+static int32_t wrap_mdeg(int32_t a)
+{
+    while (a >= 180000) {
+        a -= 360000;
+    }
+    while (a < -180000) {
+        a += 360000;
+    }
+    return a;
+}
+
+/* a * q30 value, result in the unit of a */
+static int32_t mul_q30(int32_t a, xgo_q30_t c)
+{
+    return (int32_t)((xgo_mul_wide(a, c) + (1 << 29)) >> 30);
+}
+
+static void filter(int32_t state[3], const int32_t input[3], int16_t out[3])
+{
+    unsigned i;
+    for (i = 0; i < 3; i++) {
+        state[i] += (input[i] - state[i]) >> XGO_INERTIAL_FILTER_SHIFT;
+        out[i] = to_lsb(state[i]);
+    }
+}
+
+void xgo_inertial_init(xgo_inertial_t *s)
+{
+    memset(s, 0, sizeof *s);
+    s->accel_q8[2] = XGO_ACCEL_LSB_PER_G * 256;
+    s->accel[2] = XGO_ACCEL_LSB_PER_G;
+}
+
+/* Specific force in the body frame, LSB * 256: the world acceleration
+ * (a_q8, LSB * 256, world axes) plus 1 g up, turned by R^T. */
+static void specific_force(const int32_t a_q8[3], xgo_bam_t heading, const int32_t att_mdeg[3],
+                           int32_t f[3])
+{
+    xgo_q30_t sh, ch, sr, cr, sp, cp;
+    int32_t hx, hy, hz, x1, z1;
+    xgo_sincos(heading, &sh, &ch);
+    xgo_sincos(xgo_mdeg_to_bam(att_mdeg[0]), &sr, &cr);
+    xgo_sincos(xgo_mdeg_to_bam(att_mdeg[1]), &sp, &cp);
+    /* Rz(-heading): world -> the body's heading frame */
+    hx = mul_q30(a_q8[0], ch) + mul_q30(a_q8[1], sh);
+    hy = mul_q30(a_q8[1], ch) - mul_q30(a_q8[0], sh);
+    hz = a_q8[2] + XGO_ACCEL_LSB_PER_G * 256;
+    /* Ry(-pitch), then Rx(-roll) */
+    x1 = mul_q30(hx, cp) - mul_q30(hz, sp);
+    z1 = mul_q30(hx, sp) + mul_q30(hz, cp);
+    f[0] = x1;
+    f[1] = mul_q30(hy, cr) + mul_q30(z1, sr);
+    f[2] = mul_q30(z1, cr) - mul_q30(hy, sr);
+}
+
+/* Body rates from the Euler rates (mdeg per tick), LSB * 256. */
+static void body_rates(const int32_t d_mdeg[3], const int32_t att_mdeg[3], int32_t w[3])
+{
+    xgo_q30_t sr, cr, sp, cp;
+    int32_t yaw_cp;
+    xgo_sincos(xgo_mdeg_to_bam(att_mdeg[0]), &sr, &cr);
+    xgo_sincos(xgo_mdeg_to_bam(att_mdeg[1]), &sp, &cp);
+    yaw_cp = mul_q30(d_mdeg[2], cp);
+    w[0] = d_mdeg[0] - mul_q30(d_mdeg[2], sp);
+    w[1] = mul_q30(d_mdeg[1], cr) + mul_q30(yaw_cp, sr);
+    w[2] = mul_q30(yaw_cp, cr) - mul_q30(d_mdeg[1], sr);
+}
+
+void xgo_inertial_tick(xgo_inertial_t *s, const int64_t body_q8[3], xgo_bam_t heading,
+                       const int32_t att_mdeg[3])
+{
+    int32_t a_q8[3], f[3], d[3], w[3];
+    unsigned i;
+    if (s->history == 0) {
+        memcpy(s->pos_q8[0], body_q8, sizeof s->pos_q8[0]);
+        memcpy(s->att_mdeg, att_mdeg, sizeof s->att_mdeg);
+    }
+    if (s->history < 2) {
+        memcpy(s->pos_q8[1], s->pos_q8[0], sizeof s->pos_q8[1]);
+        s->history++;
+    }
+    for (i = 0; i < 3; i++) {
+        const int64_t d2 = body_q8[i] - 2 * s->pos_q8[0][i] + s->pos_q8[1][i];
+        a_q8[i] = (int32_t)((xgo_mul_wide(clamp32(d2, D2_LIMIT_Q8), ACCEL_Q16) + 32768) >> 16);
+        d[i] = wrap_mdeg(att_mdeg[i] - s->att_mdeg[i]);
+    }
+    specific_force(a_q8, heading, att_mdeg, f);
+    body_rates(d, att_mdeg, w);
+    for (i = 0; i < 3; i++) {
+        /* +-2^18 mdeg per tick is far beyond the sensor's range */
+        w[i] = (int32_t)((xgo_mul_wide(clamp32(w[i], 1 << 18), GYRO_Q16) + 32768) >> 16);
+    }
+    filter(s->accel_q8, f, s->accel);
+    filter(s->gyro_q8, w, s->gyro);
+    memcpy(s->pos_q8[1], s->pos_q8[0], sizeof s->pos_q8[1]);
+    memcpy(s->pos_q8[0], body_q8, sizeof s->pos_q8[0]);
+    memcpy(s->att_mdeg, att_mdeg, sizeof s->att_mdeg);
+}
+
+void xgo_inertial_body_position(const xgo_odometry_t *o, const xgo_body_pose_t *pose,
+                                int64_t body_q8[3], xgo_bam_t *heading)
+{
+    xgo_q30_t sh, ch;
+    xgo_sincos(o->yaw, &sh, &ch);
+    /* (c x - s y) * 256 / 2^30 */
+    body_q8[0] = o->x_q8 + ((xgo_mul_wide(ch, pose->x_um) - xgo_mul_wide(sh, pose->y_um) +
+                             (1 << 21)) >> 22);
+    body_q8[1] = o->y_q8 + ((xgo_mul_wide(sh, pose->x_um) + xgo_mul_wide(ch, pose->y_um) +
+                             (1 << 21)) >> 22);
+    body_q8[2] = (int64_t)pose->z_um * 256;
+    *heading = o->yaw + xgo_mdeg_to_bam(pose->yaw_mdeg);
+}

@@ -1,0 +1,313 @@
+/*
+ * The accelerometer and gyroscope (IMU block 0x65) and the int16 attitude
+ * views: the model against a double-precision reference of the same physics
+ * (specific force R^T (a + g), body rates from Euler rates), then the board
+ * over the wire - standing, tilted, walking, turning, pushed - and the views'
+ * agreement with 0x62..0x64.
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "board_io.h"
+#include "unity.h"
+#include "xgo/board.h"
+#include "xgo/inertial.h"
+
+static xgo_board_t board;
+
+void setUp(void)
+{
+    xgo_board_init(&board, NULL);
+}
+
+void tearDown(void)
+{
+}
+
+#define DEG (3.14159265358979323846 / 180.0)
+
+/* ------------------------------------------------------------ reference */
+
+/* R^T (a + g z) for R = Rz(h) Ry(p) Rx(r); a in m/s^2, result in LSB. */
+static void ref_specific_force(const double a[3], double h, double r, double p, double out[3])
+{
+    const double g = 9.80665, lsb = 16384.0 / g;
+    const double v[3] = {a[0], a[1], a[2] + g};
+    /* rows of R^T = columns of R */
+    const double R[3][3] = {
+        {cos(h) * cos(p), cos(h) * sin(p) * sin(r) - sin(h) * cos(r),
+         cos(h) * sin(p) * cos(r) + sin(h) * sin(r)},
+        {sin(h) * cos(p), sin(h) * sin(p) * sin(r) + cos(h) * cos(r),
+         sin(h) * sin(p) * cos(r) - cos(h) * sin(r)},
+        {-sin(p), cos(p) * sin(r), cos(p) * cos(r)},
+    };
+    unsigned i;
+    for (i = 0; i < 3; i++) {
+        out[i] = lsb * (R[0][i] * v[0] + R[1][i] * v[1] + R[2][i] * v[2]);
+    }
+}
+
+/* Body rates (deg/s) from Euler rates for R = Rz(y) Ry(p) Rx(r). */
+static void ref_body_rates(double r, double p, double dr, double dp, double dy, double w[3])
+{
+    w[0] = dr - dy * sin(p);
+    w[1] = dp * cos(r) + dy * sin(r) * cos(p);
+    w[2] = -dp * sin(r) + dy * cos(r) * cos(p);
+}
+
+/* ------------------------------------------------------------ the model */
+
+static void run_still(xgo_inertial_t *s, int32_t r, int32_t p, int32_t y, xgo_bam_t h, int ticks)
+{
+    const int64_t pos[3] = {123456789, -98765, 97600 * 256};
+    const int32_t att[3] = {r, p, y};
+    int i;
+    for (i = 0; i < ticks; i++) {
+        xgo_inertial_tick(s, pos, h, att);
+    }
+}
+
+static void test_at_rest_reads_gravity_in_the_body_frame(void)
+{
+    static const int32_t att[][2] = {{0, 0}, {10000, 0}, {0, 10000}, {-25000, 17000},
+                                     {44000, -44000}, {90000, 0}, {0, -90000}};
+    size_t k;
+    for (k = 0; k < sizeof att / sizeof att[0]; k++) {
+        xgo_inertial_t s;
+        const double zero[3] = {0, 0, 0};
+        double want[3];
+        unsigned i;
+        xgo_inertial_init(&s);
+        run_still(&s, att[k][0], att[k][1], 5000, 0x12345678u, 60);
+        ref_specific_force(zero, 0.0, att[k][0] / 1000.0 * DEG, att[k][1] / 1000.0 * DEG, want);
+        for (i = 0; i < 3; i++) {
+            TEST_ASSERT_INT_WITHIN(2, (int)lround(want[i]), s.accel[i]);
+            TEST_ASSERT_EQUAL_INT16(0, s.gyro[i]);
+        }
+    }
+}
+
+/* A constant world acceleration (a parabola of positions) while the body is
+ * tilted and headed anywhere: the reading matches R^T (a + g). */
+static void test_constant_acceleration_is_turned_into_the_body_frame(void)
+{
+    const double a[3] = {1.2, -0.7, 0.4};          /* m/s^2 */
+    const double h = 0.8, r = 6.0 * DEG, p = -9.0 * DEG;
+    const int32_t att[3] = {6000, -9000, 45837};
+    const double dt = 1.0 / XGO_TICK_HZ;
+    xgo_inertial_t s;
+    double want[3];
+    unsigned i;
+    int k;
+    xgo_inertial_init(&s);
+    for (k = 0; k < 200; k++) {
+        int64_t pos[3];
+        for (i = 0; i < 3; i++) {
+            pos[i] = llround(0.5 * a[i] * (k * dt) * (k * dt) * 1e6 * 256.0);
+        }
+        xgo_inertial_tick(&s, pos, (xgo_bam_t)llround(h / (2.0 * 3.14159265358979323846) * 4294967296.0), att);
+    }
+    ref_specific_force(a, h, r, p, want);
+    for (i = 0; i < 3; i++) {
+        TEST_ASSERT_INT_WITHIN(3, (int)lround(want[i]), s.accel[i]);
+    }
+}
+
+/* Attitude changing at constant Euler rates: body rates as the reference. */
+static void test_euler_rates_become_body_rates(void)
+{
+    static const double rates[][3] = {{30, 0, 0}, {0, -45, 0}, {0, 0, 90}, {12, 20, -60},
+                                      {0, 0, -1500}};
+    size_t k;
+    for (k = 0; k < sizeof rates / sizeof rates[0]; k++) {
+        const int64_t pos[3] = {0, 0, 0};
+        xgo_inertial_t s;
+        double w[3];
+        int32_t att[3] = {0, 0, 0};
+        double r = 0, p = 0;
+        unsigned i;
+        int t;
+        xgo_inertial_init(&s);
+        for (t = 0; t < 100; t++) {
+            /* start tilted so the rates mix: roll 10, pitch 20 degrees */
+            r = 10.0 + rates[k][0] * t / XGO_TICK_HZ;
+            p = 20.0 + rates[k][1] * t / XGO_TICK_HZ;
+            att[0] = (int32_t)lround(r * 1000.0);
+            att[1] = (int32_t)lround(p * 1000.0);
+            att[2] = (int32_t)lround(fmod(rates[k][2] * t / XGO_TICK_HZ + 540.0, 360.0) * 1000.0) - 180000;
+            xgo_inertial_tick(&s, pos, 0, att);
+        }
+        ref_body_rates(r * DEG, p * DEG, rates[k][0], rates[k][1], rates[k][2], w);
+        for (i = 0; i < 3; i++) {
+            /* one mdeg of rounding per tick is 8.2 LSB at 500 Hz */
+            TEST_ASSERT_INT_WITHIN(10, (int)lround(w[i] * 16.4), s.gyro[i]);
+        }
+    }
+}
+
+static void test_beyond_the_range_saturates(void)
+{
+    xgo_inertial_t s;
+    int64_t pos[3] = {0, 0, 0};
+    const int32_t att[3] = {0, 0, 0}, spin[3] = {0, 0, 179000};
+    int t;
+    xgo_inertial_init(&s);
+    xgo_inertial_tick(&s, pos, 0, att);
+    for (t = 0; t < 40; t++) {
+        pos[0] += (int64_t)t << 32; /* violently faster every tick */
+        xgo_inertial_tick(&s, pos, 0, t % 2 ? att : spin);
+    }
+    TEST_ASSERT_EQUAL_INT16(32767, s.accel[0]);
+    TEST_ASSERT_TRUE(s.gyro[2] == 32767 || s.gyro[2] == -32768);
+}
+
+/* ------------------------------------------------------------ the board */
+
+typedef struct {
+    int16_t accel[3], gyro[3];
+    float angle[3];
+} block_t;
+
+static block_t read_block(void)
+{
+    uint8_t b[24];
+    block_t out;
+    unsigned i;
+    TEST_ASSERT_EQUAL_INT(XGO_TEST_REPLY_OK, xgo_test_read(&board, 0x65, 24, 0, b));
+    for (i = 0; i < 3; i++) {
+        out.accel[i] = (int16_t)(uint16_t)(b[2 * i] | b[2 * i + 1] << 8);
+        out.gyro[i] = (int16_t)(uint16_t)(b[6 + 2 * i] | b[7 + 2 * i] << 8);
+        memcpy(&out.angle[i], &b[12 + 4 * i], 4); /* little-endian host */
+    }
+    return out;
+}
+
+static float read_float(uint8_t addr)
+{
+    uint8_t b[4];
+    float f;
+    TEST_ASSERT_EQUAL_INT(XGO_TEST_REPLY_OK, xgo_test_read(&board, addr, 4, 0, b));
+    memcpy(&f, b, 4);
+    return f;
+}
+
+static int16_t read_int16_be(uint8_t addr)
+{
+    uint8_t b[2];
+    TEST_ASSERT_EQUAL_INT(XGO_TEST_REPLY_OK, xgo_test_read(&board, addr, 2, 0, b));
+    return (int16_t)(uint16_t)(b[0] << 8 | b[1]);
+}
+
+static void test_standing_reads_one_g_up(void)
+{
+    block_t blk;
+    xgo_test_ticks(&board, 10);
+    blk = read_block();
+    TEST_ASSERT_EQUAL_INT16(0, blk.accel[0]);
+    TEST_ASSERT_EQUAL_INT16(0, blk.accel[1]);
+    TEST_ASSERT_EQUAL_INT16(16384, blk.accel[2]); /* the library: 16384 / 16384 * 9.8 */
+    TEST_ASSERT_EQUAL_INT16(0, blk.gyro[2]);
+}
+
+/* On a slope (left side up 12 degrees, nose up 5): gravity tips into y and
+ * x, and the block's angles are 0x62..0x64 to the bit. */
+static void test_tilt_shows_in_the_accelerometer_and_the_views_agree(void)
+{
+    block_t blk;
+    xgo_board_set_ground_tilt(&board, 12000, -5000);
+    xgo_test_ticks(&board, 100);
+    blk = read_block();
+    TEST_ASSERT_INT_WITHIN(3, (int)lround(16384.0 * sin(5.0 * DEG)), blk.accel[0]);
+    TEST_ASSERT_INT_WITHIN(3, (int)lround(16384.0 * cos(5.0 * DEG) * sin(12.0 * DEG)), blk.accel[1]);
+    TEST_ASSERT_INT_WITHIN(3, (int)lround(16384.0 * cos(5.0 * DEG) * cos(12.0 * DEG)), blk.accel[2]);
+    TEST_ASSERT_EQUAL_FLOAT(read_float(0x62), blk.angle[0]);
+    TEST_ASSERT_EQUAL_FLOAT(read_float(0x63), blk.angle[1]);
+    TEST_ASSERT_EQUAL_FLOAT(read_float(0x64), blk.angle[2]);
+    TEST_ASSERT_EQUAL_INT16(1200, read_int16_be(0x66));
+    TEST_ASSERT_EQUAL_INT16(-500, read_int16_be(0x67));
+}
+
+/* Starting to walk forward at full speed: the gait ramps at 0.5 m/s^2, which
+ * the accelerometer sees along x (835 LSB); at cruise it reads 0 again. */
+static void test_walking_off_accelerates_forward(void)
+{
+    long sum = 0;
+    int t, lo = 99999, hi = -99999;
+    xgo_test_write1(&board, 0x30, 0xFF, 0);
+    for (t = 0; t < 400; t++) {
+        xgo_board_tick(&board);
+        if (t >= 20 && t < 220) {
+            sum += board.motion.inertial.accel[0];
+        }
+        if (t >= 350) {
+            const int16_t z = board.motion.inertial.accel[2];
+            lo = z < lo ? z : lo;
+            hi = z > hi ? z : hi;
+        }
+    }
+    TEST_ASSERT_INT_WITHIN(120, 835, (int)(sum / 200));
+    TEST_ASSERT_INT_WITHIN(200, 0, read_block().accel[0]);
+    TEST_ASSERT_INT_WITHIN(50, 16384, lo);
+    TEST_ASSERT_INT_WITHIN(50, 16384, hi);
+}
+
+/* Turning left at vyaw 0xC0 (50.6 deg/s): gyro z = rate * 16.4, and it agrees
+ * with how fast 0x64 changes; the int16 yaw equals read_yaw's float. */
+static void test_turning_shows_in_the_gyro(void)
+{
+    block_t blk;
+    float y0, y1;
+    xgo_test_write1(&board, 0x32, 0xC0, 0);
+    xgo_test_ticks(&board, XGO_TICK_HZ);
+    blk = read_block();
+    TEST_ASSERT_INT_WITHIN(10, (int)lround((-100.0 + 192.0 * 200.0 / 255.0) * 16.4), blk.gyro[2]);
+    TEST_ASSERT_INT_WITHIN(3, 0, blk.gyro[0]);
+    y0 = read_float(0x64);
+    xgo_test_ticks(&board, XGO_TICK_HZ / 5);
+    y1 = read_float(0x64);
+    TEST_ASSERT_DOUBLE_WITHIN(0.6, blk.gyro[2] / 16.4 / 5.0, y1 - y0);
+    TEST_ASSERT_INT_WITHIN(1, (int)lround(y1 * 100.0), read_int16_be(0x68));
+}
+
+/* A shove: the body tips and rings back. The tip itself is one tick (the
+ * push model's), a spike in the gyro; the ringing after it is smooth,
+ * and the gyro's integral over it is the change of the IMU's pitch (the
+ * filter's lag of about 4 ticks allowed for). */
+static void test_a_push_shows_in_the_gyro(void)
+{
+    int32_t rpy[3], pitch[80];
+    double integral = 0;
+    int t, peak = 0;
+    xgo_test_ticks(&board, 10);
+    xgo_board_push(&board, 0, 15000);
+    for (t = 0; t < 80; t++) {
+        xgo_board_tick(&board);
+        xgo_board_imu_mdeg(&board, rpy);
+        pitch[t] = rpy[1];
+        if (t >= 20) {
+            integral += board.motion.inertial.gyro[1] / 16.4 / XGO_TICK_HZ;
+        }
+        if (abs(board.motion.inertial.gyro[1]) > peak) {
+            peak = abs(board.motion.inertial.gyro[1]);
+        }
+    }
+    TEST_ASSERT_TRUE(peak > 16400); /* the tip: over 1000 deg/s */
+    TEST_ASSERT_TRUE(pitch[79] - pitch[19] < -3000); /* it did swing back */
+    TEST_ASSERT_DOUBLE_WITHIN(0.5, (pitch[75] - pitch[15]) / 1000.0, integral);
+}
+
+int main(void)
+{
+    UNITY_BEGIN();
+    RUN_TEST(test_at_rest_reads_gravity_in_the_body_frame);
+    RUN_TEST(test_constant_acceleration_is_turned_into_the_body_frame);
+    RUN_TEST(test_euler_rates_become_body_rates);
+    RUN_TEST(test_beyond_the_range_saturates);
+    RUN_TEST(test_standing_reads_one_g_up);
+    RUN_TEST(test_tilt_shows_in_the_accelerometer_and_the_views_agree);
+    RUN_TEST(test_walking_off_accelerates_forward);
+    RUN_TEST(test_turning_shows_in_the_gyro);
+    RUN_TEST(test_a_push_shows_in_the_gyro);
+    return UNITY_END();
+}
