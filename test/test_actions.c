@@ -78,17 +78,21 @@ static int has_table(unsigned id)
     return (id >= 1u && id <= XGO_ACTION_LAST) || id == XGO_ACTION_RESET;
 }
 
+/* The 18 channels in table order: body x, y, z, roll, pitch, yaw, then
+ * x, y, z of each foot. */
 static void flatten(const xgo_pose_t *p, int32_t v[18])
 {
-    int i, l;
-    for (i = 0; i < 3; ++i) {
-        v[i] = p->body_um[i];
-        v[3 + i] = p->body_mdeg[i];
-    }
+    int l;
+    v[0] = p->body.x_um;
+    v[1] = p->body.y_um;
+    v[2] = p->body.z_um;
+    v[3] = p->body.roll_mdeg;
+    v[4] = p->body.pitch_mdeg;
+    v[5] = p->body.yaw_mdeg;
     for (l = 0; l < 4; ++l) {
-        for (i = 0; i < 3; ++i) {
-            v[6 + 3 * l + i] = p->foot_um[l][i];
-        }
+        v[6 + 3 * l] = p->feet_um[l].x;
+        v[7 + 3 * l] = p->feet_um[l].y;
+        v[8 + 3 * l] = p->feet_um[l].z;
     }
 }
 
@@ -400,17 +404,19 @@ static void test_poses_change_smoothly(void)
 static void check_ranges(void *ctx, unsigned id, uint32_t tick, const xgo_pose_t *pose)
 {
     static const int32_t lim[6] = {35000, 19500, 22000, 20000, 22000, 16000};
+    int32_t v[18];
     int i, l;
     (void)ctx;
     snprintf(msg, sizeof msg, "action %u tick %lu", id, (unsigned long)tick);
+    flatten(pose, v); /* v[0..2] body translation, v[3..5] attitude */
     for (i = 0; i < 3; ++i) {
-        TEST_ASSERT_TRUE_MESSAGE(pose->body_um[i] >= -lim[i] && pose->body_um[i] <= lim[i], msg);
-        TEST_ASSERT_TRUE_MESSAGE(pose->body_mdeg[i] >= -lim[3 + i] && pose->body_mdeg[i] <= lim[3 + i], msg);
+        TEST_ASSERT_TRUE_MESSAGE(v[i] >= -lim[i] && v[i] <= lim[i], msg);
+        TEST_ASSERT_TRUE_MESSAGE(v[3 + i] >= -lim[3 + i] && v[3 + i] <= lim[3 + i], msg);
     }
     for (l = 0; l < 4; ++l) {
-        TEST_ASSERT_TRUE_MESSAGE(pose->foot_um[l][0] >= -35000 && pose->foot_um[l][0] <= 35000, msg);
-        TEST_ASSERT_TRUE_MESSAGE(pose->foot_um[l][1] >= -18000 && pose->foot_um[l][1] <= 18000, msg);
-        TEST_ASSERT_TRUE_MESSAGE(pose->foot_um[l][2] >= 0 && pose->foot_um[l][2] <= 60000, msg);
+        TEST_ASSERT_TRUE_MESSAGE(pose->feet_um[l].x >= -35000 && pose->feet_um[l].x <= 35000, msg);
+        TEST_ASSERT_TRUE_MESSAGE(pose->feet_um[l].y >= -18000 && pose->feet_um[l].y <= 18000, msg);
+        TEST_ASSERT_TRUE_MESSAGE(pose->feet_um[l].z >= 0 && pose->feet_um[l].z <= 60000, msg);
     }
 }
 
@@ -454,16 +460,16 @@ static void ref_body_ik(const geom_t *g, const xgo_pose_t *pose, double feet[4][
     double m[3][3]; /* R = Rz(y) Ry(p) Rx(r) */
     double pos[3];
     int l, i;
-    xgo_ref_rotation(pose->body_mdeg[0] / 1000.0 / DEG, pose->body_mdeg[1] / 1000.0 / DEG,
-                     pose->body_mdeg[2] / 1000.0 / DEG, m);
-    pos[0] = pose->body_um[0] / 1000.0;
-    pos[1] = pose->body_um[1] / 1000.0;
-    pos[2] = g->h0 + pose->body_um[2] / 1000.0;
+    xgo_ref_rotation(pose->body.roll_mdeg / 1000.0 / DEG, pose->body.pitch_mdeg / 1000.0 / DEG,
+                     pose->body.yaw_mdeg / 1000.0 / DEG, m);
+    pos[0] = pose->body.x_um / 1000.0;
+    pos[1] = pose->body.y_um / 1000.0;
+    pos[2] = g->h0 + pose->body.z_um / 1000.0;
     for (l = 0; l < 4; ++l) {
         double foot[3], v[3], b[3];
-        foot[0] = k_side_x[l] * g->hx + pose->foot_um[l][0] / 1000.0;
-        foot[1] = k_side_y[l] * (g->hy + g->d) + pose->foot_um[l][1] / 1000.0;
-        foot[2] = pose->foot_um[l][2] / 1000.0;
+        foot[0] = k_side_x[l] * g->hx + pose->feet_um[l].x / 1000.0;
+        foot[1] = k_side_y[l] * (g->hy + g->d) + pose->feet_um[l].y / 1000.0;
+        foot[2] = pose->feet_um[l].z / 1000.0;
         for (i = 0; i < 3; ++i) {
             v[i] = foot[i] - pos[i];
         }
@@ -599,17 +605,17 @@ static void check_fixed_ik(void *ctx, unsigned id, uint32_t tick, const xgo_pose
     unsigned mask;
     int l, j;
     xgo_body_pose_stand(pr, &bp);
-    bp.x_um += pose->body_um[0];
-    bp.y_um += pose->body_um[1];
-    bp.z_um += pose->body_um[2];
-    bp.roll_mdeg = pose->body_mdeg[0];
-    bp.pitch_mdeg = pose->body_mdeg[1];
-    bp.yaw_mdeg = pose->body_mdeg[2];
+    bp.x_um += pose->body.x_um;
+    bp.y_um += pose->body.y_um;
+    bp.z_um += pose->body.z_um;
+    bp.roll_mdeg = pose->body.roll_mdeg;
+    bp.pitch_mdeg = pose->body.pitch_mdeg;
+    bp.yaw_mdeg = pose->body.yaw_mdeg;
     xgo_stance_feet(pr, feet);
     for (l = 0; l < XGO_LEG_COUNT; ++l) {
-        feet[l].x += pose->foot_um[l][0];
-        feet[l].y += pose->foot_um[l][1];
-        feet[l].z += pose->foot_um[l][2];
+        feet[l].x += pose->feet_um[l].x;
+        feet[l].y += pose->feet_um[l].y;
+        feet[l].z += pose->feet_um[l].z;
     }
     mask = xgo_body_to_joints(pr, &bp, feet, q);
     snprintf(msg, sizeof msg, "action %u tick %lu: projected legs mask %u", id, (unsigned long)tick, mask);
@@ -673,9 +679,9 @@ static void check_balance(void *ctx, unsigned id, uint32_t tick, const xgo_pose_
         return;
     }
     for (l = 0; l < 4; ++l) {
-        f[l][0] = k_side_x[l] * b->g.hx + pose->foot_um[l][0] / 1000.0;
-        f[l][1] = k_side_y[l] * (b->g.hy + b->g.d) + pose->foot_um[l][1] / 1000.0;
-        if (pose->foot_um[l][2] > 3000) {
+        f[l][0] = k_side_x[l] * b->g.hx + pose->feet_um[l].x / 1000.0;
+        f[l][1] = k_side_y[l] * (b->g.hy + b->g.d) + pose->feet_um[l].y / 1000.0;
+        if (pose->feet_um[l].z > 3000) {
             up = l;
             n_up++;
         } else {
@@ -687,8 +693,8 @@ static void check_balance(void *ctx, unsigned id, uint32_t tick, const xgo_pose_
         return;
     }
     (void)up;
-    centre[0] = pose->body_um[0] / 1000.0;
-    centre[1] = pose->body_um[1] / 1000.0;
+    centre[0] = pose->body.x_um / 1000.0;
+    centre[1] = pose->body.y_um / 1000.0;
     m = side_dist(f[t[0]], f[t[1]], f[t[2]], centre);
     if (side_dist(f[t[1]], f[t[2]], f[t[0]], centre) < m) {
         m = side_dist(f[t[1]], f[t[2]], f[t[0]], centre);
@@ -832,7 +838,7 @@ static void count_lifts(void *ctx, unsigned id, uint32_t tick, const xgo_pose_t 
     (void)id;
     (void)tick;
     for (l = 0; l < 4; ++l) {
-        int up = pose->foot_um[l][2] > 10000;
+        int up = pose->feet_um[l].z > 10000;
         if (up && !c->up[l]) {
             c->count[l]++;
         }

@@ -17,7 +17,7 @@
 #define PI 3.14159265358979323846
 
 /* The Mini's stance: feet under the hips plus the abduction offset. */
-static const int32_t k_stance[XGO_LEG_COUNT][3] = {
+static const xgo_vec3_t k_stance[XGO_LEG_COUNT] = {
     { 75000, 53500, 0 },   /* LF */
     { 75000, -53500, 0 },  /* RF */
     { -75000, -53500, 0 }, /* RH */
@@ -64,18 +64,18 @@ static int trot_family(uint8_t type)
 }
 
 /* Checks that hold at every tick, given the feet published before it. */
-static void check_tick(int32_t prev[XGO_LEG_COUNT][3], const uint8_t prev_contact[XGO_LEG_COUNT],
+static void check_tick(xgo_vec3_t prev[XGO_LEG_COUNT], const uint8_t prev_contact[XGO_LEG_COUNT],
                        double y_box_um, int yaw_seen)
 {
     int leg;
     double w = g.vyaw_mdeg_s * PI / 180000.0; /* rad/s */
     for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
-        double dx = g.foot_um[leg][0] - prev[leg][0];
-        double dy = g.foot_um[leg][1] - prev[leg][1];
-        double dz = g.foot_um[leg][2] - prev[leg][2];
+        double dx = g.foot_um[leg].x - prev[leg].x;
+        double dy = g.foot_um[leg].y - prev[leg].y;
+        double dz = g.foot_um[leg].z - prev[leg].z;
         double step = sqrt(dx * dx + dy * dy + dz * dz);
-        double ox = fabs((double)(g.foot_um[leg][0] - k_stance[leg][0]));
-        double oy = fabs((double)(g.foot_um[leg][1] - k_stance[leg][1]));
+        double ox = fabs((double)(g.foot_um[leg].x - k_stance[leg].x));
+        double oy = fabs((double)(g.foot_um[leg].y - k_stance[leg].y));
         double *worst_step = trot_family(g.type) ? &worst_step_trot_um : &worst_step_walk_um;
         if (step > *worst_step) {
             *worst_step = step;
@@ -86,23 +86,23 @@ static void check_tick(int32_t prev[XGO_LEG_COUNT][3], const uint8_t prev_contac
         if (yaw_seen ? oy > worst_dy_um : oy > worst_dy_noyaw_um) {
             *(yaw_seen ? &worst_dy_um : &worst_dy_noyaw_um) = oy;
         }
-        if (g.foot_um[leg][2] > worst_z_um) {
-            worst_z_um = g.foot_um[leg][2];
+        if (g.foot_um[leg].z > worst_z_um) {
+            worst_z_um = g.foot_um[leg].z;
         }
         TEST_ASSERT_TRUE_MESSAGE(step <= (trot_family(g.type) ? XGO_GAIT_MAX_STEP_TROT_UM : XGO_GAIT_MAX_STEP_UM),
                                  "foot moved more than the bound in one tick");
         TEST_ASSERT_TRUE_MESSAGE(ox <= XGO_GAIT_REACH_X_UM, "foot outside the x reach");
         TEST_ASSERT_TRUE_MESSAGE(oy <= y_box_um, "foot outside the y reach");
-        TEST_ASSERT_TRUE_MESSAGE(g.foot_um[leg][2] >= 0 && g.foot_um[leg][2] <= XGO_GAIT_MAX_HEIGHT_UM,
+        TEST_ASSERT_TRUE_MESSAGE(g.foot_um[leg].z >= 0 && g.foot_um[leg].z <= XGO_GAIT_MAX_HEIGHT_UM,
                                  "foot height out of range");
         if (g.contact[leg]) {
-            TEST_ASSERT_EQUAL_INT32_MESSAGE(0, g.foot_um[leg][2], "stance foot off the ground");
+            TEST_ASSERT_EQUAL_INT32_MESSAGE(0, g.foot_um[leg].z, "stance foot off the ground");
         }
         if (g.contact[leg] && prev_contact[leg]) {
             /* Odometry: a planted foot moves exactly as the published body
              * velocity says, -(v + w x p) dt (to the um rounding). */
-            double ex = dx + (g.vx_um_s - w * prev[leg][1]) * DT;
-            double ey = dy + (g.vy_um_s + w * prev[leg][0]) * DT;
+            double ex = dx + (g.vx_um_s - w * prev[leg].y) * DT;
+            double ey = dy + (g.vy_um_s + w * prev[leg].x) * DT;
             double e = sqrt(ex * ex + ey * ey);
             if (e > worst_odometry_um) {
                 worst_odometry_um = e;
@@ -114,7 +114,7 @@ static void check_tick(int32_t prev[XGO_LEG_COUNT][3], const uint8_t prev_contac
 
 static void tick_checked(const xgo_gait_command_t *c, double y_box_um, int yaw_seen)
 {
-    int32_t prev[XGO_LEG_COUNT][3];
+    xgo_vec3_t prev[XGO_LEG_COUNT];
     uint8_t prev_contact[XGO_LEG_COUNT];
     memcpy(prev, g.foot_um, sizeof prev);
     memcpy(prev_contact, g.contact, sizeof prev_contact);
@@ -154,7 +154,7 @@ typedef struct fit_s {
     long samples;
 } fit_t;
 
-static void fit_add(fit_t *f, int32_t prev[XGO_LEG_COUNT][3], const uint8_t prev_contact[XGO_LEG_COUNT])
+static void fit_add(fit_t *f, xgo_vec3_t prev[XGO_LEG_COUNT], const uint8_t prev_contact[XGO_LEG_COUNT])
 {
     int leg;
     for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
@@ -162,10 +162,10 @@ static void fit_add(fit_t *f, int32_t prev[XGO_LEG_COUNT][3], const uint8_t prev
         if (!prev_contact[leg] || !g.contact[leg]) {
             continue;
         }
-        x = prev[leg][0];
-        y = prev[leg][1];
-        bx = -(g.foot_um[leg][0] - prev[leg][0]) / DT;
-        by = -(g.foot_um[leg][1] - prev[leg][1]) / DT;
+        x = prev[leg].x;
+        y = prev[leg].y;
+        bx = -(g.foot_um[leg].x - prev[leg].x) / DT;
+        by = -(g.foot_um[leg].y - prev[leg].y) / DT;
         /* row (1, 0, -y) -> bx ; row (0, 1, x) -> by */
         f->a[0][0] += 1;
         f->a[0][2] += -y;
@@ -226,7 +226,7 @@ static void measure(const xgo_gait_command_t *c, int cycles, double out[3], doub
         }
     }
     while (td < cycles && guard++ < 20000) {
-        int32_t prev[XGO_LEG_COUNT][3];
+        xgo_vec3_t prev[XGO_LEG_COUNT];
         uint8_t prev_contact[XGO_LEG_COUNT];
         memcpy(prev, g.foot_um, sizeof prev);
         memcpy(prev_contact, g.contact, sizeof prev_contact);
@@ -254,9 +254,9 @@ static void test_init_is_standing_at_stance(void)
     int leg;
     TEST_ASSERT_TRUE(xgo_gait_is_standing(&g));
     for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
-        TEST_ASSERT_EQUAL_INT32(k_stance[leg][0], g.foot_um[leg][0]);
-        TEST_ASSERT_EQUAL_INT32(k_stance[leg][1], g.foot_um[leg][1]);
-        TEST_ASSERT_EQUAL_INT32(0, g.foot_um[leg][2]);
+        TEST_ASSERT_EQUAL_INT32(k_stance[leg].x, g.foot_um[leg].x);
+        TEST_ASSERT_EQUAL_INT32(k_stance[leg].y, g.foot_um[leg].y);
+        TEST_ASSERT_EQUAL_INT32(0, g.foot_um[leg].z);
         TEST_ASSERT_EQUAL_UINT8(1, g.contact[leg]);
     }
     TEST_ASSERT_EQUAL_INT32(0, g.vx_um_s);
@@ -265,7 +265,7 @@ static void test_init_is_standing_at_stance(void)
 static void test_zero_command_keeps_standing(void)
 {
     xgo_gait_command_t c = command(0, 0, 0, XGO_GAIT_WALK, XGO_PACE_HIGH);
-    int32_t before[XGO_LEG_COUNT][3];
+    xgo_vec3_t before[XGO_LEG_COUNT];
     memcpy(before, g.foot_um, sizeof before);
     run(&c, 1000);
     TEST_ASSERT_TRUE(xgo_gait_is_standing(&g));
@@ -306,8 +306,8 @@ static void trot_pairs(uint8_t type, const xgo_gait_command_t *base)
         run(&c, 1);
         TEST_ASSERT_EQUAL_UINT8(g.contact[XGO_LEG_LF], g.contact[XGO_LEG_RH]);
         TEST_ASSERT_EQUAL_UINT8(g.contact[XGO_LEG_RF], g.contact[XGO_LEG_LH]);
-        TEST_ASSERT_EQUAL_INT32(g.foot_um[XGO_LEG_LF][2], g.foot_um[XGO_LEG_RH][2]);
-        TEST_ASSERT_EQUAL_INT32(g.foot_um[XGO_LEG_RF][2], g.foot_um[XGO_LEG_LH][2]);
+        TEST_ASSERT_EQUAL_INT32(g.foot_um[XGO_LEG_LF].z, g.foot_um[XGO_LEG_RH].z);
+        TEST_ASSERT_EQUAL_INT32(g.foot_um[XGO_LEG_RF].z, g.foot_um[XGO_LEG_LH].z);
         TEST_ASSERT_TRUE_MESSAGE(g.contact[XGO_LEG_LF] || g.contact[XGO_LEG_RF], "both pairs in the air");
         swings_a += was_a && !g.contact[XGO_LEG_LF];
         swings_b += was_b && !g.contact[XGO_LEG_RF];
@@ -354,8 +354,8 @@ static void walk_sequence(uint8_t type, const xgo_gait_command_t *base, int32_t 
                 TEST_ASSERT_EQUAL_INT_MESSAGE(order[lifts % 4], leg, "walk swing order");
                 lifts++;
             }
-            if (g.foot_um[leg][2] > zmax) {
-                zmax = g.foot_um[leg][2];
+            if (g.foot_um[leg].z > zmax) {
+                zmax = g.foot_um[leg].z;
             }
         }
         TEST_ASSERT_GREATER_OR_EQUAL_INT_MESSAGE(3, down, "fewer than three feet down in a walk");
@@ -469,9 +469,9 @@ static void stop_from(const xgo_gait_command_t *c, int run_ticks)
     TEST_ASSERT_TRUE(xgo_gait_is_standing(&g));
     TEST_ASSERT_LESS_OR_EQUAL_UINT32(XGO_GAIT_STOP_TICKS_MAX, n);
     for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
-        TEST_ASSERT_EQUAL_INT32(k_stance[leg][0], g.foot_um[leg][0]);
-        TEST_ASSERT_EQUAL_INT32(k_stance[leg][1], g.foot_um[leg][1]);
-        TEST_ASSERT_EQUAL_INT32(0, g.foot_um[leg][2]);
+        TEST_ASSERT_EQUAL_INT32(k_stance[leg].x, g.foot_um[leg].x);
+        TEST_ASSERT_EQUAL_INT32(k_stance[leg].y, g.foot_um[leg].y);
+        TEST_ASSERT_EQUAL_INT32(0, g.foot_um[leg].z);
         TEST_ASSERT_EQUAL_UINT8(1, g.contact[leg]);
     }
     TEST_ASSERT_EQUAL_INT32(0, g.vx_um_s);
@@ -481,7 +481,7 @@ static void stop_from(const xgo_gait_command_t *c, int run_ticks)
     run(&zero, 500);
     TEST_ASSERT_TRUE(xgo_gait_is_standing(&g));
     for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
-        TEST_ASSERT_EQUAL_INT32(k_stance[leg][0], g.foot_um[leg][0]);
+        TEST_ASSERT_EQUAL_INT32(k_stance[leg].x, g.foot_um[leg].x);
     }
 }
 
@@ -525,10 +525,10 @@ static void test_mark_time(void)
             uint8_t was = g.contact[XGO_LEG_LF];
             run(&c, 1);
             for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
-                TEST_ASSERT_EQUAL_INT32(k_stance[leg][0], g.foot_um[leg][0]);
-                TEST_ASSERT_EQUAL_INT32(k_stance[leg][1], g.foot_um[leg][1]);
-                if (g.foot_um[leg][2] > zmax) {
-                    zmax = g.foot_um[leg][2];
+                TEST_ASSERT_EQUAL_INT32(k_stance[leg].x, g.foot_um[leg].x);
+                TEST_ASSERT_EQUAL_INT32(k_stance[leg].y, g.foot_um[leg].y);
+                if (g.foot_um[leg].z > zmax) {
+                    zmax = g.foot_um[leg].z;
                 }
             }
             TEST_ASSERT_EQUAL_UINT8(g.contact[XGO_LEG_LF], g.contact[XGO_LEG_RH]);

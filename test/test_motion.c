@@ -115,13 +115,13 @@ static void test_walking_forward_moves_stance_feet_backward(void)
     for (t = 0; t < 200; t++) {
         int32_t before[4];
         for (leg = 0; leg < 4; leg++) {
-            before[leg] = board.motion.gait.foot_um[leg][0];
+            before[leg] = board.motion.gait.foot_um[leg].x;
         }
         ticks(1);
         for (leg = 0; leg < 4; leg++) {
-            if (board.motion.gait.contact[leg] && board.motion.gait.foot_um[leg][2] == 0 &&
-                before[leg] != board.motion.gait.foot_um[leg][0]) {
-                TEST_ASSERT_TRUE(board.motion.gait.foot_um[leg][0] < before[leg]);
+            if (board.motion.gait.contact[leg] && board.motion.gait.foot_um[leg].z == 0 &&
+                before[leg] != board.motion.gait.foot_um[leg].x) {
+                TEST_ASSERT_TRUE(board.motion.gait.foot_um[leg].x < before[leg]);
                 seen++;
             }
         }
@@ -211,8 +211,8 @@ static void test_mark_time_steps_in_place(void)
     wr(XGO_REG_MARK_TIME, 255); /* 35 mm */
     for (t = 0; t < 2 * XGO_TICK_HZ; t++) {
         ticks(1);
-        if (board.motion.gait.foot_um[0][2] > top) {
-            top = board.motion.gait.foot_um[0][2];
+        if (board.motion.gait.foot_um[0].z > top) {
+            top = board.motion.gait.foot_um[0].z;
         }
     }
     TEST_ASSERT_INT32_WITHIN(1000, 35000, top);

@@ -311,7 +311,8 @@ static void test_feet_pushed_back_in_leg_mode_move_the_body_forward(void)
 static void test_observers_describe_the_standing_robot(void)
 {
     const xgo_profile_t *p = xgo_profile_mini();
-    int32_t feet[XGO_LEG_COUNT][3], q[XGO_SERVO_COUNT], cmd[3], prod[3], rpy[3], lo, hi;
+    xgo_vec3_t feet[XGO_LEG_COUNT];
+    int32_t q[XGO_SERVO_COUNT], cmd[3], prod[3], rpy[3], lo, hi;
     xgo_body_pose_t pose;
     unsigned leg, j;
     ticks(10);
@@ -322,10 +323,10 @@ static void test_observers_describe_the_standing_robot(void)
     xgo_board_feet_um(&board, feet);
     for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
         /* under the thigh joints, on the ground the body stands above */
-        TEST_ASSERT_INT32_WITHIN(50, xgo_leg_side_x((xgo_leg_t)leg) * p->hip_x_um, feet[leg][0]);
+        TEST_ASSERT_INT32_WITHIN(50, xgo_leg_side_x((xgo_leg_t)leg) * p->hip_x_um, feet[leg].x);
         TEST_ASSERT_INT32_WITHIN(50, xgo_leg_side_y((xgo_leg_t)leg) * (p->hip_y_um + p->abad_offset_um),
-                                 feet[leg][1]);
-        TEST_ASSERT_INT32_WITHIN(50, -pose.z_um, feet[leg][2]);
+                                 feet[leg].y);
+        TEST_ASSERT_INT32_WITHIN(50, -pose.z_um, feet[leg].z);
     }
     xgo_board_joints_mdeg(&board, q);
     for (j = 0; j < XGO_SERVO_COUNT; j++) {

@@ -81,7 +81,8 @@ static void assert_value(int32_t thousandths, int decimals, const char *text, co
 
 static void test_state_numbers_are_the_boards(void)
 {
-    int32_t joints[XGO_SERVO_COUNT], feet[XGO_LEG_COUNT][3], imu[3], cmd[3], act[3];
+    int32_t joints[XGO_SERVO_COUNT], imu[3], cmd[3], act[3];
+    xgo_vec3_t feet[XGO_LEG_COUNT];
     xgo_body_pose_t body;
     xgo_world_pose_t world;
     uint64_t cursor = 0;
@@ -115,7 +116,7 @@ static void test_state_numbers_are_the_boards(void)
     for (i = 0; i < XGO_LEG_COUNT; i++) {
         for (k = 0; k < 3; k++) {
             snprintf(path, sizeof path, "feet_mm.%u.%u", i, k);
-            assert_value(feet[i][k], 1, s, path);
+            assert_value(k == 0 ? feet[i].x : (k == 1 ? feet[i].y : feet[i].z), 1, s, path);
         }
         snprintf(path, sizeof path, "contacts.%u", i);
         TEST_ASSERT_EQUAL_DOUBLE((xgo_board_contacts(&g_board) >> i) & 1u, number(s, path));

@@ -65,7 +65,8 @@ static void write_header(FILE *f)
 
 static void write_row(FILE *f, const xgo_board_t *b, unsigned row)
 {
-    int32_t q[XGO_SERVO_COUNT], feet[XGO_LEG_COUNT][3], rpy[3], cmd[3], act[3];
+    int32_t q[XGO_SERVO_COUNT], rpy[3], cmd[3], act[3];
+    xgo_vec3_t feet[XGO_LEG_COUNT];
     xgo_body_pose_t pose;
     xgo_world_pose_t world;
     unsigned k, contacts = xgo_board_contacts(b);
@@ -81,8 +82,8 @@ static void write_row(FILE *f, const xgo_board_t *b, unsigned row)
     for (k = 0; k < XGO_SERVO_COUNT; ++k) {
         fprintf(f, ",%.3f", q[k] / 1000.0);
     }
-    for (k = 0; k < XGO_LEG_COUNT * 3u; ++k) {
-        fprintf(f, ",%.3f", feet[k / 3u][k % 3u] / 1000.0);
+    for (k = 0; k < XGO_LEG_COUNT; ++k) {
+        fprintf(f, ",%.3f,%.3f,%.3f", feet[k].x / 1000.0, feet[k].y / 1000.0, feet[k].z / 1000.0);
     }
     for (k = 0; k < XGO_LEG_COUNT; ++k) {
         fprintf(f, ",%u", (contacts >> k) & 1u);

@@ -34,6 +34,8 @@
 
 #include <stdint.h>
 
+#include "xgo/types.h" /* xgo_pose_t: an action's pose is an offset from the standing pose */
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -69,18 +71,6 @@ extern "C" {
 #define XGO_ACTION_NAUGHTY 24u
 #define XGO_ACTION_LAST 24u  /* highest preset id */
 #define XGO_ACTION_RESET 255u
-
-/* A whole-robot pose relative to the stance; all zero = standing.
- * Machine frame: x forward, y left, z up. */
-typedef struct xgo_pose_s {
-    int32_t body_um[3];    /* body translation from the standing pose, um */
-    int32_t body_mdeg[3];  /* body roll, pitch, yaw, mdeg, right hand rule
-                              (roll + lifts the left side, pitch + lowers the
-                              nose, yaw + turns the nose left) */
-    int32_t foot_um[4][3]; /* foot offset from its stance point, machine
-                              frame, um; legs 0..3 = 1 LF, 2 RF, 3 RH, 4 LH
-                              (xgo_leg_t); z + lifts the foot */
-} xgo_pose_t;
 
 /* Player state: which action, and where in it. Small and plain: copy it,
  * zero it, keep one per board. Read it only through the functions below. */

@@ -154,7 +154,7 @@ void xgo_board_joints_mdeg(const xgo_board_t *b, int32_t out[XGO_SERVO_COUNT]);
 /* Limits of joint 0..11 (the servo register's byte range). */
 void xgo_board_joint_limits_mdeg(const xgo_board_t *b, unsigned joint, int32_t *lo, int32_t *hi);
 /* The feet (legs LF, RF, RH, LH) in the body frame, from the actual joints. */
-void xgo_board_feet_um(const xgo_board_t *b, int32_t out[XGO_LEG_COUNT][3]);
+void xgo_board_feet_um(const xgo_board_t *b, xgo_vec3_t out[XGO_LEG_COUNT]);
 /* Bit leg set: that foot is on the ground. */
 uint8_t xgo_board_contacts(const xgo_board_t *b);
 /* The body pose used this tick (machine frame: translation from the point

@@ -54,6 +54,7 @@
 #include <stdint.h>
 
 #include "xgo/config.h" /* XGO_TICK_HZ */
+#include "xgo/types.h"  /* xgo_vec3_t */
 
 /* Legs 1..4 = indices 0..3: XGO_LEG_LF, _RF, _RH, _LH and XGO_LEG_COUNT, from
  * the one place legs are numbered (only the enum is used here). */
@@ -129,7 +130,7 @@ typedef struct xgo_gait_command_s {
 
 typedef struct xgo_gait_s {
     /* ---- outputs, valid after xgo_gait_init and after every tick ---- */
-    int32_t foot_um[XGO_LEG_COUNT][3]; /* feet relative to the body, z up */
+    xgo_vec3_t foot_um[XGO_LEG_COUNT]; /* feet relative to the body, z up */
     uint8_t contact[XGO_LEG_COUNT];    /* 1 = stance (on the ground) */
     int32_t vx_um_s;                   /* velocity produced this tick */
     int32_t vy_um_s;
@@ -176,7 +177,7 @@ typedef struct xgo_gait_s {
 /* Standing at the stance: stance_um[leg] = nominal foot (x, y, z) in the
  * machine frame relative to the body; z is ignored (the ground is z = 0),
  * x and y are clamped to +-200 mm. */
-void xgo_gait_init(xgo_gait_t *g, const int32_t stance_um[XGO_LEG_COUNT][3]);
+void xgo_gait_init(xgo_gait_t *g, const xgo_vec3_t stance_um[XGO_LEG_COUNT]);
 
 /* Advance one control period (1 / XGO_TICK_HZ s) under cmd. */
 void xgo_gait_tick(xgo_gait_t *g, const xgo_gait_command_t *cmd);

@@ -38,28 +38,11 @@
 
 #include "xgo/fixed.h"
 #include "xgo/profile.h"
+#include "xgo/types.h" /* xgo_vec3_t, xgo_body_pose_t */
 
 #ifdef __cplusplus
 extern "C" {
 #endif
-
-typedef struct xgo_vec3_s {
-    int32_t x;
-    int32_t y;
-    int32_t z;
-} xgo_vec3_t;
-
-/* Body pose in the machine frame: the body centre's position (z is the
- * height of the hip axes above the ground) and its attitude, applied as
- * R = Rz(yaw) * Ry(pitch) * Rx(roll), right-hand rule about the machine axes. */
-typedef struct xgo_body_pose_s {
-    int32_t x_um;
-    int32_t y_um;
-    int32_t z_um;
-    int32_t roll_mdeg;
-    int32_t pitch_mdeg;
-    int32_t yaw_mdeg;
-} xgo_body_pose_t;
 
 /* Leg IK results. */
 #define XGO_IK_REACHED 0

@@ -29,6 +29,7 @@
 
 #include "xgo/fixed.h"
 #include "xgo/profile.h"
+#include "xgo/types.h" /* xgo_vec3_t, xgo_world_pose_t */
 
 #ifdef __cplusplus
 extern "C" {
@@ -38,7 +39,7 @@ typedef struct xgo_odometry_s {
     int64_t x_q8;                           /* world position, 1/256 um */
     int64_t y_q8;
     xgo_bam_t yaw;                          /* heading, binary angle */
-    int32_t prev_um[XGO_LEG_COUNT][2];      /* last tick's feet (machine x, y) */
+    xgo_vec3_t prev_um[XGO_LEG_COUNT];      /* last tick's feet (machine frame; z unused) */
     uint8_t prev_contact;                   /* bit leg: planted last tick */
     uint8_t have_prev;                      /* prev_* are valid */
     int32_t last_d_q8[2];                   /* last tick's translation (body frame) */
@@ -46,19 +47,12 @@ typedef struct xgo_odometry_s {
     uint32_t extrapolated_ticks;            /* ticks with < 2 common planted feet */
 } xgo_odometry_t;
 
-/* The world pose as reported. */
-typedef struct xgo_world_pose_s {
-    int32_t x_um;
-    int32_t y_um;
-    int32_t yaw_mdeg; /* [-180000, 180000] */
-} xgo_world_pose_t;
-
 /* At the origin, heading 0, no previous feet. */
 void xgo_odometry_init(xgo_odometry_t *o);
 
-/* One tick: feet_um[leg] = (x, y) in the machine frame (um); contact bit leg
- * set when that foot is on the ground. */
-void xgo_odometry_update(xgo_odometry_t *o, const int32_t feet_um[XGO_LEG_COUNT][2],
+/* One tick: the feet in the machine frame (um; only x and y count); contact
+ * bit leg set when that foot is on the ground. */
+void xgo_odometry_update(xgo_odometry_t *o, const xgo_vec3_t feet_um[XGO_LEG_COUNT],
                          uint8_t contact);
 
 void xgo_odometry_pose(const xgo_odometry_t *o, xgo_world_pose_t *out);

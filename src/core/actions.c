@@ -534,24 +534,28 @@ static int32_t round_q16(int64_t v)
     return (int32_t)(((v + bias + 32768) >> 16) - (bias >> 16));
 }
 
+/* The pose field a channel drives (channel order: C_BX .. C_LHZ). */
 static int32_t *channel(xgo_pose_t *o, unsigned c)
 {
-    if (c < 3u) {
-        return &o->body_um[c];
-    }
-    if (c < 6u) {
-        return &o->body_mdeg[c - 3u];
+    xgo_vec3_t *foot;
+    switch (c) {
+    case C_BX: return &o->body.x_um;
+    case C_BY: return &o->body.y_um;
+    case C_BZ: return &o->body.z_um;
+    case C_ROLL: return &o->body.roll_mdeg;
+    case C_PITCH: return &o->body.pitch_mdeg;
+    case C_YAW: return &o->body.yaw_mdeg;
+    default: break;
     }
     c -= 6u;
-    return &o->foot_um[c / 3u][c % 3u];
+    foot = &o->feet_um[c / 3u];
+    return c % 3u == 0u ? &foot->x : (c % 3u == 1u ? &foot->y : &foot->z);
 }
 
 static void zero_pose(xgo_pose_t *o)
 {
-    unsigned c;
-    for (c = 0; c < (unsigned)C_COUNT; ++c) {
-        *channel(o, c) = 0;
-    }
+    static const xgo_pose_t zero = {{0, 0, 0, 0, 0, 0}, {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}}};
+    *o = zero;
 }
 
 /* Pose at tick t of virtual segment k (which runs from keyframe k-1 to k;

@@ -320,14 +320,9 @@ void xgo_board_joint_limits_mdeg(const xgo_board_t *b, unsigned joint, int32_t *
     *hi = r->hi;
 }
 
-void xgo_board_feet_um(const xgo_board_t *b, int32_t out[XGO_LEG_COUNT][3])
+void xgo_board_feet_um(const xgo_board_t *b, xgo_vec3_t out[XGO_LEG_COUNT])
 {
-    unsigned leg;
-    for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
-        out[leg][0] = b->motion.feet_body_um[leg].x;
-        out[leg][1] = b->motion.feet_body_um[leg].y;
-        out[leg][2] = b->motion.feet_body_um[leg].z;
-    }
+    memcpy(out, b->motion.feet_body_um, sizeof b->motion.feet_body_um);
 }
 
 uint8_t xgo_board_contacts(const xgo_board_t *b)

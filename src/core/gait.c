@@ -127,9 +127,9 @@ static void publish(xgo_gait_t *g, const int32_t z_um[XGO_LEG_COUNT])
 {
     int leg;
     for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
-        g->foot_um[leg][0] = (g->pos_q8[leg][0] + 128) >> 8;
-        g->foot_um[leg][1] = (g->pos_q8[leg][1] + 128) >> 8;
-        g->foot_um[leg][2] = z_um[leg];
+        g->foot_um[leg].x = (g->pos_q8[leg][0] + 128) >> 8;
+        g->foot_um[leg].y = (g->pos_q8[leg][1] + 128) >> 8;
+        g->foot_um[leg].z = z_um[leg];
         g->contact[leg] = (uint8_t)!g->swinging[leg];
     }
 }
@@ -152,14 +152,15 @@ static void invalidate_caches(xgo_gait_t *g)
     g->cache_rate_fit = 0;
 }
 
-void xgo_gait_init(xgo_gait_t *g, const int32_t stance_um[XGO_LEG_COUNT][3])
+void xgo_gait_init(xgo_gait_t *g, const xgo_vec3_t stance_um[XGO_LEG_COUNT])
 {
     static const int32_t zero_z[XGO_LEG_COUNT] = { 0, 0, 0, 0 };
     int leg;
     int c;
     for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
+        g->stance_um[leg][0] = clamp32(stance_um[leg].x, -STANCE_CLAMP_UM, STANCE_CLAMP_UM);
+        g->stance_um[leg][1] = clamp32(stance_um[leg].y, -STANCE_CLAMP_UM, STANCE_CLAMP_UM);
         for (c = 0; c < 2; ++c) {
-            g->stance_um[leg][c] = clamp32(stance_um[leg][c], -STANCE_CLAMP_UM, STANCE_CLAMP_UM);
             g->pos_q8[leg][c] = g->stance_um[leg][c] * 256;
             g->lift_q8[leg][c] = g->pos_q8[leg][c];
         }

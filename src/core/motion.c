@@ -19,21 +19,9 @@ static int32_t clamp32(int32_t v, int32_t lo, int32_t hi)
     return v < lo ? lo : (v > hi ? hi : v);
 }
 
-static void stance_array(const xgo_motion_t *m, int32_t out[XGO_LEG_COUNT][3])
-{
-    unsigned i;
-    for (i = 0; i < XGO_LEG_COUNT; i++) {
-        out[i][0] = m->stance_um[i].x;
-        out[i][1] = m->stance_um[i].y;
-        out[i][2] = m->stance_um[i].z;
-    }
-}
-
 static void reset_gait(xgo_motion_t *m)
 {
-    int32_t stance[XGO_LEG_COUNT][3];
-    stance_array(m, stance);
-    xgo_gait_init(&m->gait, (const int32_t(*)[3])stance);
+    xgo_gait_init(&m->gait, m->stance_um);
 }
 
 /* The standing pose is what the body registers say at their initial values
@@ -315,6 +303,9 @@ static int32_t wave(xgo_bam_t phase, int32_t amplitude)
     return xgo_mul_q(amplitude, xgo_sin(phase), 30);
 }
 
+/* The body pose the registers ask for: 0x33..0x38 (dead band at 0x7F/0x80),
+ * each axis with a periodic motion (0x39..0x3B, 0x80..0x82) replaced by its
+ * sinusoid. Advances the periodic phases. */
 static void body_pose_from_registers(xgo_motion_t *m, const xgo_regs_t *r, xgo_body_pose_t *pose)
 {
     const xgo_profile_t *p = m->profile;
@@ -345,7 +336,21 @@ static void body_pose_from_registers(xgo_motion_t *m, const xgo_regs_t *r, xgo_b
         v[axis] = (range->lo + range->hi) / 2 + wave(m->periodic_phase[axis], (range->hi - range->lo) / 4);
     }
 
-    /* Self-stabilisation levels the body against the IMU (roll, pitch). */
+    pose->roll_mdeg = v[0];
+    pose->pitch_mdeg = v[1];
+    pose->yaw_mdeg = v[2];
+    pose->x_um = v[3];
+    pose->y_um = v[4];
+    pose->z_um = v[5];
+}
+
+/* Self-stabilisation (0x61 = 1) levels the body against the IMU: each tick
+ * the roll and pitch correction moves by a share of the IMU's error (of the
+ * last tick); off, the correction decays. It is added to the body pose,
+ * whose roll and pitch stay within the profile's ranges. */
+static void self_level(xgo_motion_t *m, const xgo_regs_t *r, xgo_body_pose_t *pose)
+{
+    const xgo_profile_t *p = m->profile;
     if (xgo_regs_get(r, XGO_REG_IMU_MODE) == 1) {
         m->stab_mdeg[0] -= m->imu.roll_mdeg >> STAB_GAIN_SHIFT;
         m->stab_mdeg[1] -= m->imu.pitch_mdeg >> STAB_GAIN_SHIFT;
@@ -355,13 +360,9 @@ static void body_pose_from_registers(xgo_motion_t *m, const xgo_regs_t *r, xgo_b
     }
     m->stab_mdeg[0] = clamp32(m->stab_mdeg[0], 2 * p->body_mdeg[0].lo, 2 * p->body_mdeg[0].hi);
     m->stab_mdeg[1] = clamp32(m->stab_mdeg[1], 2 * p->body_mdeg[1].lo, 2 * p->body_mdeg[1].hi);
-
-    pose->roll_mdeg = clamp32(v[0] + m->stab_mdeg[0], p->body_mdeg[0].lo, p->body_mdeg[0].hi);
-    pose->pitch_mdeg = clamp32(v[1] + m->stab_mdeg[1], p->body_mdeg[1].lo, p->body_mdeg[1].hi);
-    pose->yaw_mdeg = v[2];
-    pose->x_um = v[3];
-    pose->y_um = v[4];
-    pose->z_um = v[5];
+    pose->roll_mdeg = clamp32(pose->roll_mdeg + m->stab_mdeg[0], p->body_mdeg[0].lo, p->body_mdeg[0].hi);
+    pose->pitch_mdeg =
+        clamp32(pose->pitch_mdeg + m->stab_mdeg[1], p->body_mdeg[1].lo, p->body_mdeg[1].hi);
 }
 
 static void gait_command_from_registers(const xgo_motion_t *m, const xgo_regs_t *r,
@@ -376,28 +377,28 @@ static void gait_command_from_registers(const xgo_motion_t *m, const xgo_regs_t 
     cmd->pace = xgo_regs_get(r, XGO_REG_MOVE_MODE);
 }
 
-/* Feet and pose for a running action (255, the reset, stands for 1 s). */
+/* Feet and pose for a running action (255, the reset, stands for 1 s): the
+ * action's offsets on the standing pose and the stance; a foot not lifted
+ * is on the ground. */
 static void action_pose(xgo_motion_t *m, xgo_body_pose_t *pose, xgo_vec3_t feet[XGO_LEG_COUNT])
 {
     xgo_pose_t ap;
     unsigned leg;
-    *pose = m->stand;
-    memcpy(feet, m->stance_um, sizeof m->stance_um);
     if (!xgo_action_tick(&m->actions, &ap)) {
         m->action_id = 0;
     }
+    pose->x_um = m->stand.x_um + ap.body.x_um;
+    pose->y_um = m->stand.y_um + ap.body.y_um;
+    pose->z_um = m->stand.z_um + ap.body.z_um;
+    pose->roll_mdeg = m->stand.roll_mdeg + ap.body.roll_mdeg;
+    pose->pitch_mdeg = m->stand.pitch_mdeg + ap.body.pitch_mdeg;
+    pose->yaw_mdeg = m->stand.yaw_mdeg + ap.body.yaw_mdeg;
     m->contact = 0;
-    pose->x_um += ap.body_um[0];
-    pose->y_um += ap.body_um[1];
-    pose->z_um += ap.body_um[2];
-    pose->roll_mdeg += ap.body_mdeg[0];
-    pose->pitch_mdeg += ap.body_mdeg[1];
-    pose->yaw_mdeg += ap.body_mdeg[2];
     for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
-        feet[leg].x += ap.foot_um[leg][0];
-        feet[leg].y += ap.foot_um[leg][1];
-        feet[leg].z += ap.foot_um[leg][2];
-        if (ap.foot_um[leg][2] <= 0) {
+        feet[leg].x = m->stance_um[leg].x + ap.feet_um[leg].x;
+        feet[leg].y = m->stance_um[leg].y + ap.feet_um[leg].y;
+        feet[leg].z = m->stance_um[leg].z + ap.feet_um[leg].z;
+        if (ap.feet_um[leg].z <= 0) {
             m->contact |= (uint8_t)(1u << leg);
         }
     }
@@ -450,11 +451,10 @@ static int whole_unit_targets(xgo_motion_t *m, const xgo_regs_t *r, int32_t q[XG
         m->contact = 0;
         for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
             m->contact |= (uint8_t)(m->gait.contact[leg] << leg);
-            feet[leg].x = m->gait.foot_um[leg][0];
-            feet[leg].y = m->gait.foot_um[leg][1];
-            feet[leg].z = m->gait.foot_um[leg][2];
+            feet[leg] = m->gait.foot_um[leg];
         }
         body_pose_from_registers(m, r, &pose);
+        self_level(m, r, &pose);
         walking = !xgo_gait_is_standing(&m->gait);
         *yaw_rate_mdeg_s = m->gait.vyaw_mdeg_s;
     }
@@ -497,7 +497,6 @@ static int32_t servo_mode_step(const xgo_regs_t *r)
 static void measure_feet(xgo_motion_t *m, int contact_known)
 {
     xgo_vec3_t machine[XGO_LEG_COUNT];
-    int32_t xy[XGO_LEG_COUNT][2];
     int32_t low = INT32_MAX;
     unsigned leg;
     if (contact_known && m->ik_cache.valid && m->ik_cache.projected == 0 &&
@@ -520,8 +519,6 @@ static void measure_feet(xgo_motion_t *m, int contact_known)
         xgo_body_to_machine(&m->pose, m->feet_body_um, machine);
     }
     for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
-        xy[leg][0] = machine[leg].x;
-        xy[leg][1] = machine[leg].y;
         low = machine[leg].z < low ? machine[leg].z : low;
     }
     if (!contact_known) {
@@ -532,7 +529,7 @@ static void measure_feet(xgo_motion_t *m, int contact_known)
             }
         }
     }
-    xgo_odometry_update(&m->odom, (const int32_t(*)[2])xy, m->contact);
+    xgo_odometry_update(&m->odom, machine, m->contact);
 }
 
 /* ------------------------------------------------------------ publish */

@@ -34,7 +34,7 @@ static int32_t div_small(int32_t v, unsigned n)
 
 /* The rigid motion (rotation dyaw, translation d) that maps this tick's
  * planted feet b onto last tick's a: a = R(dyaw) b + d, least squares. */
-static void fit_motion(const xgo_odometry_t *o, const int32_t feet_um[XGO_LEG_COUNT][2],
+static void fit_motion(const xgo_odometry_t *o, const xgo_vec3_t feet_um[XGO_LEG_COUNT],
                        uint8_t common, unsigned n, int32_t d_q8[2], int32_t *dyaw)
 {
     int32_t sa[2] = {0, 0}, sb[2] = {0, 0};
@@ -43,19 +43,19 @@ static void fit_motion(const xgo_odometry_t *o, const int32_t feet_um[XGO_LEG_CO
     unsigned leg;
     for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
         if (common & (1u << leg)) {
-            sa[0] += o->prev_um[leg][0];
-            sa[1] += o->prev_um[leg][1];
-            sb[0] += feet_um[leg][0];
-            sb[1] += feet_um[leg][1];
+            sa[0] += o->prev_um[leg].x;
+            sa[1] += o->prev_um[leg].y;
+            sb[0] += feet_um[leg].x;
+            sb[1] += feet_um[leg].y;
         }
     }
     /* centred coordinates, scaled by n so they stay integers */
     for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
         if (common & (1u << leg)) {
-            const int32_t ax = (int32_t)n * o->prev_um[leg][0] - sa[0];
-            const int32_t ay = (int32_t)n * o->prev_um[leg][1] - sa[1];
-            const int32_t bx = (int32_t)n * feet_um[leg][0] - sb[0];
-            const int32_t by = (int32_t)n * feet_um[leg][1] - sb[1];
+            const int32_t ax = (int32_t)n * o->prev_um[leg].x - sa[0];
+            const int32_t ay = (int32_t)n * o->prev_um[leg].y - sa[1];
+            const int32_t bx = (int32_t)n * feet_um[leg].x - sb[0];
+            const int32_t by = (int32_t)n * feet_um[leg].y - sb[1];
             cross += xgo_mul_wide(bx, ay) - xgo_mul_wide(by, ax);
             dot += xgo_mul_wide(bx, ax) + xgo_mul_wide(by, ay);
         }
@@ -81,17 +81,29 @@ static void apply_motion(xgo_odometry_t *o, const int32_t d_q8[2], int32_t dyaw)
     o->yaw += (xgo_bam_t)dyaw;
 }
 
+/* The feet have not moved on the floor plane (z does not count). */
+static int same_xy(const xgo_vec3_t a[XGO_LEG_COUNT], const xgo_vec3_t b[XGO_LEG_COUNT])
+{
+    unsigned leg;
+    for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
+        if (a[leg].x != b[leg].x || a[leg].y != b[leg].y) {
+            return 0;
+        }
+    }
+    return 1;
+}
+
 static unsigned popcount4(uint8_t m)
 {
     return (m & 1u) + ((m >> 1) & 1u) + ((m >> 2) & 1u) + ((m >> 3) & 1u);
 }
 
-void xgo_odometry_update(xgo_odometry_t *o, const int32_t feet_um[XGO_LEG_COUNT][2],
+void xgo_odometry_update(xgo_odometry_t *o, const xgo_vec3_t feet_um[XGO_LEG_COUNT],
                          uint8_t contact)
 {
     const uint8_t common = o->have_prev ? (uint8_t)(o->prev_contact & contact & 0x0Fu) : 0u;
     const unsigned n = popcount4(common);
-    if (common == contact && memcmp(o->prev_um, feet_um, sizeof o->prev_um) == 0) {
+    if (common == contact && same_xy(o->prev_um, feet_um)) {
         /* nothing moved (standing): no motion, and nothing to remember */
         o->last_d_q8[0] = o->last_d_q8[1] = 0;
         o->last_dyaw = 0;

@@ -57,15 +57,21 @@ static void xgo_host_record_list(FILE *f, const int32_t *v, size_t n, unsigned d
 
 static void xgo_host_record_row(FILE *f, const xgo_board_t *b)
 {
-    int32_t joints[XGO_SERVO_COUNT], feet[XGO_LEG_COUNT][3], imu[3], cmd[3], act[3];
+    int32_t joints[XGO_SERVO_COUNT], feet[3 * XGO_LEG_COUNT], imu[3], cmd[3], act[3];
     int32_t pose[6], world[3];
+    xgo_vec3_t foot[XGO_LEG_COUNT];
     xgo_body_pose_t body;
     xgo_world_pose_t w;
     uint8_t contacts = xgo_board_contacts(b);
     unsigned leg;
 
     xgo_board_joints_mdeg(b, joints);
-    xgo_board_feet_um(b, feet);
+    xgo_board_feet_um(b, foot);
+    for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
+        feet[3 * leg] = foot[leg].x;
+        feet[3 * leg + 1] = foot[leg].y;
+        feet[3 * leg + 2] = foot[leg].z;
+    }
     xgo_board_body_pose(b, &body);
     xgo_board_world_pose(b, &w);
     xgo_board_imu_mdeg(b, imu);
@@ -83,7 +89,7 @@ static void xgo_host_record_row(FILE *f, const xgo_board_t *b)
     fprintf(f, "%lu,%u,%u", (unsigned long)xgo_board_time_ms(b), (unsigned)xgo_board_mode(b),
             (unsigned)xgo_board_action(b));
     xgo_host_record_list(f, joints, XGO_SERVO_COUNT, 2);
-    xgo_host_record_list(f, &feet[0][0], 3u * XGO_LEG_COUNT, 1);
+    xgo_host_record_list(f, feet, 3u * XGO_LEG_COUNT, 1);
     for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
         fprintf(f, ",%u", (unsigned)((contacts >> leg) & 1u));
     }

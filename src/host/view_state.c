@@ -54,17 +54,17 @@ static void xgo_host_view_joints(xgo_host_json_t *w, const xgo_board_t *b)
 
 static void xgo_host_view_feet(xgo_host_json_t *w, const xgo_board_t *b)
 {
-    int32_t feet[XGO_LEG_COUNT][3];
+    xgo_vec3_t feet[XGO_LEG_COUNT];
     uint8_t contacts = xgo_board_contacts(b);
-    unsigned leg, axis;
+    unsigned leg;
     xgo_board_feet_um(b, feet);
     xgo_host_json_key(w, "feet_mm");
     xgo_host_json_array_begin(w);
     for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
         xgo_host_json_array_begin(w);
-        for (axis = 0; axis < 3; axis++) {
-            xgo_host_json_fixed(w, feet[leg][axis], 3, 1);
-        }
+        xgo_host_json_fixed(w, feet[leg].x, 3, 1);
+        xgo_host_json_fixed(w, feet[leg].y, 3, 1);
+        xgo_host_json_fixed(w, feet[leg].z, 3, 1);
         xgo_host_json_array_end(w);
     }
     xgo_host_json_array_end(w);
