@@ -62,6 +62,10 @@ int xgo_host_decode_value(uint8_t addr, uint8_t value, char *out, size_t out_siz
     static const char *const paces[] = {"normal", "slow", "high"};
     static const char *const imu[] = {"off", "self-stabilizing"};
     static const char *const once[] = {"idle", "do it"};
+    /* register 0x00, xgo_mode_t order (the view's /meta uses the same words) */
+    static const char *const modes[] = {"whole unit", "leg", "servo", "debug", "action",
+                                        "calibration"};
+    static const char *const models[] = {"mini", "lite"}; /* 0x02: xgo_model_t */
 
     out[0] = '\0';
     if ((addr >= XGO_REG_VX && addr <= XGO_REG_BODY_YAW) ||
@@ -70,6 +74,10 @@ int xgo_host_decode_value(uint8_t addr, uint8_t value, char *out, size_t out_siz
         return xgo_host_decode_centred(value, out, out_size) > 0;
     }
     switch (addr) {
+    case XGO_REG_MODE:
+        return xgo_host_decode_choice(value, modes, 6, out, out_size) > 0;
+    case XGO_REG_VERSION:
+        return xgo_host_decode_choice(value, models, 2, out, out_size) > 0;
     case XGO_REG_PERFORM:
         return xgo_host_decode_choice(value, perform, 2, out, out_size) > 0;
     case XGO_REG_CALIBRATION:

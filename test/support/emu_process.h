@@ -15,7 +15,7 @@
 #include <stddef.h>
 #include <sys/types.h>
 
-#define XGO_TEST_EMU_OUT_CAP 4096u  /* stdout kept (the path, --help, --version) */
+#define XGO_TEST_EMU_OUT_CAP 65536u /* stdout kept (the path, --help, a program's output) */
 #define XGO_TEST_EMU_ERR_CAP 65536u /* stderr kept (traces, counters at exit) */
 
 typedef struct xgo_test_emu_s {

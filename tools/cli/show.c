@@ -1,0 +1,319 @@
+/*
+ * show.c - registers as xgo-cli prints them: address, name, raw bytes and
+ * meaning, one line each ("0x30 vx 0xFF +25.00 cm/s"), or one JSON object
+ * each. Scales are the core's (xgo/reg_units.h), words the --trace ones.
+ */
+#include <string.h>
+
+#include "cli.h"
+#include "decode.h"
+#include "xgo/board.h"
+#include "xgo/reg_units.h"
+#include "xgo/regs.h"
+
+/* How a unit is shown: base units per display unit (a power of ten), the
+ * decimals kept, and its name. */
+typedef struct xgo_cli_display_s {
+    unsigned scale; /* log10(base units per display unit) */
+    unsigned decimals;
+    const char *name;
+} xgo_cli_display_t;
+
+static xgo_cli_display_t xgo_cli_display(int unit)
+{
+    xgo_cli_display_t d = {0, 0, ""};
+    switch (unit) {
+    case XGO_UNIT_UM_S: d.scale = 4; d.decimals = 2; d.name = "cm/s"; break; /* the vendor's unit */
+    case XGO_UNIT_MDEG_S: d.scale = 3; d.decimals = 2; d.name = "deg/s"; break;
+    case XGO_UNIT_MDEG: d.scale = 3; d.decimals = 2; d.name = "deg"; break;
+    case XGO_UNIT_UM: d.scale = 3; d.decimals = 2; d.name = "mm"; break;
+    case XGO_UNIT_MS: d.scale = 3; d.decimals = 3; d.name = "s"; break;
+    case XGO_UNIT_PERCENT: d.name = "%"; break;
+    default: break;
+    }
+    return d;
+}
+
+/* value / 10^scale with `decimals` digits, half away from zero, no "-0". */
+static void xgo_cli_fixed(int64_t value, unsigned scale, unsigned decimals, int sign, char *out,
+                          size_t out_size)
+{
+    int64_t div = 1, keep = 1, mag = value < 0 ? -value : value;
+    unsigned i;
+    for (i = 0; i < scale; i++) {
+        div *= 10;
+    }
+    for (i = 0; i < decimals; i++) {
+        keep *= 10;
+    }
+    mag = (mag * keep * 2 + div) / (2 * div); /* in units of 10^-decimals */
+    snprintf(out, out_size, "%s%lld", mag == 0 ? "" : (value < 0 ? "-" : (sign ? "+" : "")),
+             (long long)(mag / keep));
+    if (decimals > 0) {
+        size_t len = strlen(out);
+        snprintf(out + len, out_size - len, ".%0*lld", (int)decimals, (long long)(mag % keep));
+    }
+}
+
+void xgo_cli_format_value(int unit, int32_t value, int sign, char *out, size_t out_size)
+{
+    xgo_cli_display_t d = xgo_cli_display(unit);
+    size_t len;
+    xgo_cli_fixed(value, d.scale, d.decimals, sign, out, out_size);
+    len = strlen(out);
+    snprintf(out + len, out_size - len, unit == XGO_UNIT_PERCENT ? "%s" : " %s", d.name);
+}
+
+/* Signed registers (those that mean negative values too) show a '+'. */
+static int xgo_cli_signed(const xgo_profile_t *p, uint8_t addr)
+{
+    int32_t lo, hi;
+    return xgo_reg_value_range(p, addr, &lo, &hi) && lo < 0;
+}
+
+/* A unit register's byte in its unit; 0 when the model is unknown. */
+static int xgo_cli_physical_text(xgo_cli_t *cli, uint8_t addr, uint8_t b, char *out, size_t size)
+{
+    const xgo_profile_t *p = xgo_cli_profile(cli);
+    int32_t v;
+    if (p == NULL || !xgo_reg_byte_to_value(p, addr, b, &v)) {
+        return 0;
+    }
+    if (v == 0 && b == 0 && (xgo_reg_unit(addr) == XGO_UNIT_MS || addr == XGO_REG_MARK_TIME)) {
+        snprintf(out, size, "off");
+        return 1;
+    }
+    xgo_cli_format_value((int)xgo_reg_unit(addr), v, xgo_cli_signed(p, addr), out, size);
+    return 1;
+}
+
+void xgo_cli_meaning(xgo_cli_t *cli, uint8_t addr, uint8_t b, char *out, size_t out_size)
+{
+    out[0] = '\0';
+    if (xgo_reg_unit(addr) != XGO_UNIT_NONE && xgo_cli_physical_text(cli, addr, b, out, out_size)) {
+        return;
+    }
+    if (!xgo_host_decode_value(addr, b, out, out_size)) {
+        out[0] = '\0';
+    }
+}
+
+/* One shown register: what a line and a JSON object are made of. */
+typedef struct xgo_cli_line_s {
+    uint8_t addr;
+    char name[40];
+    const uint8_t *bytes;
+    size_t n;
+    char text[128]; /* meaning, "" when the raw value says it all */
+    int has_number; /* JSON "value": number/10^scale in `unit` */
+    int64_t number;
+    unsigned scale, decimals;
+    const char *unit;
+} xgo_cli_line_t;
+
+static void xgo_cli_line_init(xgo_cli_line_t *l, uint8_t addr, const uint8_t *bytes, size_t n)
+{
+    const xgo_reg_desc_t *d = xgo_reg_find(addr);
+    memset(l, 0, sizeof *l);
+    l->addr = addr;
+    l->bytes = bytes;
+    l->n = n;
+    l->unit = "";
+    if (d == NULL) {
+        snprintf(l->name, sizeof l->name, "-");
+    } else if (d->addr != addr) {
+        snprintf(l->name, sizeof l->name, "%s[%u]", d->name, (unsigned)(addr - d->addr));
+    } else {
+        snprintf(l->name, sizeof l->name, "%s", d->name);
+    }
+}
+
+static void xgo_cli_line_print(const xgo_cli_line_t *l, xgo_host_json_t *json)
+{
+    size_t i;
+    if (json != NULL) {
+        xgo_host_json_object_begin(json);
+        xgo_host_json_key(json, "addr");
+        xgo_host_json_uint(json, l->addr);
+        xgo_host_json_key(json, "name");
+        xgo_host_json_string(json, l->name);
+        xgo_host_json_key(json, "bytes");
+        xgo_host_json_hex(json, l->bytes, l->n);
+        if (l->has_number) {
+            xgo_host_json_key(json, "value");
+            xgo_host_json_fixed(json, l->number, l->scale, l->decimals);
+            xgo_host_json_key(json, "unit");
+            xgo_host_json_string(json, l->unit);
+        }
+        xgo_host_json_key(json, "text");
+        xgo_host_json_string(json, l->text);
+        xgo_host_json_object_end(json);
+        return;
+    }
+    printf("0x%02X %s ", l->addr, l->name);
+    if (l->n == 1) {
+        printf("0x%02X", l->bytes[0]);
+    } else {
+        for (i = 0; i < l->n; i++) {
+            printf(i ? " %02X" : "%02X", l->bytes[i]);
+        }
+    }
+    printf(l->text[0] != '\0' ? " %s\n" : "\n", l->text);
+}
+
+/* Text registers (firmware, bt_name): printable part as a string. */
+static void xgo_cli_text(xgo_cli_line_t *l)
+{
+    size_t i, len = 1;
+    l->text[0] = '"';
+    for (i = 0; i < l->n && l->bytes[i] != 0 && len + 6 < sizeof l->text; i++) {
+        uint8_t c = l->bytes[i];
+        len += (size_t)snprintf(l->text + len, sizeof l->text - len,
+                                (c >= 0x20u && c < 0x7Fu && c != '"') ? "%c" : "\\x%02X", c);
+    }
+    snprintf(l->text + len, sizeof l->text - len, "\"");
+}
+
+/* The 4-byte attitude view at 0x62..0x64: float32 LE degrees. */
+static void xgo_cli_attitude(xgo_cli_line_t *l)
+{
+    uint32_t bits = (uint32_t)l->bytes[0] | (uint32_t)l->bytes[1] << 8 |
+                    (uint32_t)l->bytes[2] << 16 | (uint32_t)l->bytes[3] << 24;
+    float f;
+    memcpy(&f, &bits, sizeof f);
+    snprintf(l->text, sizeof l->text, "%+.2f deg", (double)f);
+    l->has_number = 1;
+    l->number = (int64_t)((double)f * 1000.0 + (f < 0 ? -0.5 : 0.5));
+    l->scale = 3;
+    l->decimals = 3;
+    l->unit = "deg";
+}
+
+/* The diagnostic counters in data (from 0xC4 on), one line each. */
+static size_t xgo_cli_show_diag(const uint8_t *data, size_t n, xgo_host_json_t *json)
+{
+    size_t k;
+    for (k = 0; k < XGO_DIAG_COUNT && 4 * k + 4 <= n; k++) {
+        xgo_cli_line_t l;
+        const uint8_t *p = data + 4 * k;
+        uint32_t v = (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
+        xgo_cli_line_init(&l, (uint8_t)(XGO_REG_DIAG + 4 * k), p, 4);
+        snprintf(l.name, sizeof l.name, "%s", xgo_diag_name((xgo_diag_t)k));
+        snprintf(l.text, sizeof l.text, "%lu", (unsigned long)v);
+        l.has_number = 1;
+        l.number = v;
+        xgo_cli_line_print(&l, json);
+    }
+    return n; /* unused slots are not shown */
+}
+
+/* A single byte of a one-byte register (or a byte inside a wider one, or
+ * an address the board lacks). */
+static void xgo_cli_byte_line(xgo_cli_t *cli, uint8_t addr, const uint8_t *b, xgo_cli_line_t *l)
+{
+    const xgo_profile_t *p;
+    int32_t v;
+    xgo_cli_line_init(l, addr, b, 1);
+    xgo_cli_meaning(cli, addr, *b, l->text, sizeof l->text);
+    if (xgo_reg_unit(addr) != XGO_UNIT_NONE && (p = xgo_cli_profile(cli)) != NULL &&
+        xgo_reg_byte_to_value(p, addr, *b, &v)) {
+        xgo_cli_display_t d = xgo_cli_display((int)xgo_reg_unit(addr));
+        l->has_number = 1;
+        l->number = v;
+        l->scale = d.scale;
+        l->decimals = d.scale; /* JSON keeps every digit */
+        l->unit = d.name;
+    }
+}
+
+/* The register at data[0] (addr): its line, and how many bytes it took.
+ * Views first (the attitude float, the firmware window: only a read that
+ * starts there has them), then wider registers, then single bytes. The
+ * diagnostic block is left to xgo_cli_show_diag (0 returned). */
+static size_t xgo_cli_line_at(xgo_cli_t *cli, uint8_t addr, const uint8_t *data, size_t n,
+                              int first, xgo_cli_line_t *l)
+{
+    const xgo_reg_desc_t *d = xgo_reg_find(addr);
+    if (first && addr >= XGO_REG_IMU_ROLL && addr <= XGO_REG_IMU_YAW && n >= 4) {
+        xgo_cli_line_init(l, addr, data, 4);
+        xgo_cli_attitude(l);
+        return 4;
+    }
+    if (first && addr == XGO_REG_FIRMWARE) {
+        /* any length read from 0x07 is the string */
+        xgo_cli_line_init(l, addr, data, n < XGO_FIRMWARE_LEN ? n : XGO_FIRMWARE_LEN);
+        xgo_cli_text(l);
+        return l->n;
+    }
+    if (addr == XGO_REG_DIAG && n >= 4) {
+        return 0;
+    }
+    if (d != NULL && d->addr == addr && d->valid == XGO_VALID_ASCII) {
+        /* text: as much of it as the read (or write) covers */
+        xgo_cli_line_init(l, addr, data, n < d->width ? n : d->width);
+        xgo_cli_text(l);
+        return l->n;
+    }
+    if (d != NULL && d->addr == addr && d->width > 1 && n >= d->width) {
+        xgo_cli_line_init(l, addr, data, d->width);
+        return d->width;
+    }
+    xgo_cli_byte_line(cli, addr, data, l);
+    return 1;
+}
+
+void xgo_cli_show_regs(xgo_cli_t *cli, uint8_t addr, const uint8_t *data, size_t n,
+                       xgo_host_json_t *json)
+{
+    size_t i = 0;
+    while (i < n) {
+        xgo_cli_line_t l;
+        size_t took = xgo_cli_line_at(cli, (uint8_t)(addr + i), data + i, n - i, i == 0, &l);
+        if (took == 0) {
+            i += xgo_cli_show_diag(data + i, n - i, json);
+            continue;
+        }
+        xgo_cli_line_print(&l, json);
+        i += took;
+    }
+}
+
+void xgo_cli_reg_text(xgo_cli_t *cli, uint8_t addr, const uint8_t *data, size_t n, char *out,
+                      size_t out_size)
+{
+    xgo_cli_line_t l;
+    size_t i;
+    if (xgo_cli_line_at(cli, addr, data, n, 1, &l) == 0) {
+        snprintf(out, out_size, "0x%02X", data[0]);
+        return;
+    }
+    if (l.text[0] != '\0') {
+        snprintf(out, out_size, "%s", l.text);
+        return;
+    }
+    out[0] = '\0';
+    for (i = 0; i < l.n && 3 * i + 5 < out_size; i++) {
+        snprintf(out + strlen(out), out_size - strlen(out), i ? " %02X" : "0x%02X", l.bytes[i]);
+    }
+}
+
+xgo_host_json_t *xgo_cli_json_begin(xgo_cli_t *cli)
+{
+    static char buf[1u << 17];
+    static xgo_host_json_t w;
+    xgo_host_json_init(&w, buf, sizeof buf);
+    xgo_host_json_object_begin(&w);
+    xgo_host_json_key(&w, "ok");
+    xgo_host_json_bool(&w, 1);
+    if (cli->port != NULL) {
+        xgo_host_json_key(&w, "port");
+        xgo_host_json_string(&w, cli->port);
+    }
+    return &w;
+}
+
+void xgo_cli_json_end(xgo_host_json_t *w)
+{
+    xgo_host_json_object_end(w);
+    printf("%s\n", xgo_host_json_ok(w) ? w->buf : "{\"ok\":false,\"error\":\"output too large\"}");
+}
