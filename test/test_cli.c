@@ -165,6 +165,13 @@ static void test_read_attitude_as_float(void)
     TEST_ASSERT_EQUAL_INT(0, cli("-p", g_emu.pty, "read", "imu_roll", "1", NULL));
     /* one byte: 1 LSB = 180/128 deg, 5 deg -> 0x84 = 5.625 deg */
     TEST_ASSERT_EQUAL_STRING("0x62 imu_roll 0x84 +5.63 deg\n", g_cli.out);
+    /* the int16 view: 0.01 deg big-endian, 500 = 0x01F4 */
+    TEST_ASSERT_EQUAL_INT(0, cli("-p", g_emu.pty, "read", "imu_roll16", NULL));
+    TEST_ASSERT_EQUAL_STRING("0x66 imu_roll16 01 F4 +5.00 deg\n", g_cli.out);
+    /* the IMU block: its angles are the float view's */
+    TEST_ASSERT_EQUAL_INT(0, cli("-p", g_emu.pty, "read", "imu_block", NULL));
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(g_cli.out, "deg/s, rpy +5.00 -2.50 +0.00 deg\n"), g_cli.out);
+    TEST_ASSERT_EQUAL_STRING_LEN("0x65 imu_block ", g_cli.out, 15);
 }
 
 static void test_dump_lists_every_register(void)
@@ -208,6 +215,11 @@ static void test_write_physical_raw_and_words(void)
     /* what the board holds, read by the test: 12.5 cm/s is nearest to byte
      * 0xBF (-25 + 191 * 50 / 255 = 12.45), -10 deg to 0x40 (-9.96), 2.5 s
      * to 0x27 (1.5 + 39 * 6.5 / 255 = 2.494) */
+    /* turn_to's write view: one int16 big-endian heading */
+    TEST_ASSERT_EQUAL_INT(0, cli("-p", g_emu.pty, "write", "turn_to=-90deg", NULL));
+    TEST_ASSERT_EQUAL_STRING("0x3F turn_to FF A6 -90 deg\n", g_cli.out);
+    port_read(0x40, 1, b);
+    TEST_ASSERT_EQUAL_HEX8(0x80, b[0]); /* the second byte is not leg1_x's */
     port_read(0x30, 1, b);
     TEST_ASSERT_EQUAL_HEX8(0xBF, b[0]);
     port_read(0x36, 1, b);

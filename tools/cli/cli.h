@@ -110,6 +110,9 @@ int xgo_cli_value_unit(const char *value);
  * written there. */
 void xgo_cli_show_regs(xgo_cli_t *cli, uint8_t addr, const uint8_t *data, size_t n,
                        xgo_host_json_t *json);
+/* The same for bytes written at addr (write views: 0x3F takes a heading). */
+void xgo_cli_show_write(xgo_cli_t *cli, uint8_t addr, const uint8_t *data, size_t n,
+                        xgo_host_json_t *json);
 /* What the register at addr means, from a read of n bytes there: the
  * text of its line ("+25.00 cm/s", "-3.20 deg", "walk"), else its bytes. */
 void xgo_cli_reg_text(xgo_cli_t *cli, uint8_t addr, const uint8_t *data, size_t n, char *out,

@@ -10,12 +10,19 @@
 #include "xgo/regs.h"
 
 /* How many bytes a read of register addr takes by default: its width; the
- * attitude registers as the vendor library reads them (4-byte float view). */
+ * computed views as the vendor library reads them (attitude as a 4-byte
+ * float, the IMU block, the int16 angles). */
 static unsigned xgo_cli_default_count(uint8_t addr)
 {
     const xgo_reg_desc_t *d = xgo_reg_find(addr);
     if (addr >= XGO_REG_IMU_ROLL && addr <= XGO_REG_IMU_YAW) {
         return 4;
+    }
+    if (addr == XGO_REG_IMU_BLOCK) {
+        return XGO_IMU_BLOCK_LEN; /* read_imu() */
+    }
+    if (addr >= XGO_REG_IMU_ROLL16 && addr <= XGO_REG_IMU_YAW16) {
+        return 2; /* read_imu_int16() */
     }
     if (d == NULL || d->addr != addr) {
         return 1;

@@ -73,7 +73,7 @@ int xgo_cli_cmd_write(xgo_cli_t *cli, int argc, char **argv)
         xgo_host_json_array_begin(json);
     }
     for (i = 0; i < argc - 1; i++) {
-        xgo_cli_show_regs(cli, writes[i].addr, writes[i].data, writes[i].n, json);
+        xgo_cli_show_write(cli, writes[i].addr, writes[i].data, writes[i].n, json);
     }
     if (json != NULL) {
         xgo_host_json_array_end(json);

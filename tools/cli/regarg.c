@@ -369,6 +369,27 @@ static int xgo_cli_raw_value(uint8_t addr, const char *value, uint8_t *out, size
     return -1;
 }
 
+/* turn_to (0x3F) takes a heading as two bytes, int16 big-endian degrees
+ * (its write view, docs/registers.md). */
+static int xgo_cli_heading(const char *value, uint8_t *out, char *err, size_t err_size)
+{
+    const xgo_cli_unit_t *u = xgo_cli_find_unit(value);
+    int32_t mdeg;
+    long deg;
+    if (u->unit != XGO_UNIT_MDEG || !xgo_cli_scale(value, u->per_unit, &mdeg)) {
+        snprintf(err, err_size, "turn_to takes a heading in deg, not '%s'", value);
+        return -1;
+    }
+    deg = (long)((mdeg >= 0 ? mdeg + 500 : mdeg - 500) / 1000);
+    if (deg < -32768 || deg > 32767) {
+        snprintf(err, err_size, "turn_to=%s is out of range: -32768 .. 32767 deg", value);
+        return -1;
+    }
+    out[0] = (uint8_t)(((unsigned long)deg >> 8) & 0xFFu);
+    out[1] = (uint8_t)((unsigned long)deg & 0xFFu);
+    return 2;
+}
+
 /* Refuses what the board would refuse: read-only bytes, values outside a
  * register's valid set, a write past 0xFF. */
 static int xgo_cli_check_write(uint8_t addr, const uint8_t *data, size_t n, char *err,
@@ -405,7 +426,9 @@ int xgo_cli_parse_value(xgo_cli_t *cli, uint8_t addr, const char *value, uint8_t
         snprintf(err, err_size, "%s= needs a value", xgo_reg_name(addr));
         return -1;
     }
-    if (xgo_cli_find_unit(value) != NULL && (d == NULL || d->valid != XGO_VALID_ASCII)) {
+    if (addr == XGO_REG_TURN_TO && xgo_cli_find_unit(value) != NULL) {
+        n = xgo_cli_heading(value, out, err, err_size);
+    } else if (xgo_cli_find_unit(value) != NULL && (d == NULL || d->valid != XGO_VALID_ASCII)) {
         n = xgo_cli_physical(cli, addr, value, out, err, err_size);
     } else {
         n = xgo_cli_raw_value(addr, value, out, cap, err, err_size);

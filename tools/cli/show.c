@@ -174,19 +174,59 @@ static void xgo_cli_text(xgo_cli_line_t *l)
     snprintf(l->text + len, sizeof l->text - len, "\"");
 }
 
+static int16_t xgo_cli_be16(const uint8_t *p)
+{
+    return (int16_t)(uint16_t)((unsigned)p[0] << 8 | p[1]);
+}
+
+static int16_t xgo_cli_le16(const uint8_t *p)
+{
+    return (int16_t)(uint16_t)((unsigned)p[1] << 8 | p[0]);
+}
+
+static float xgo_cli_le_float(const uint8_t *p)
+{
+    uint32_t bits = (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
+    float f;
+    memcpy(&f, &bits, sizeof f);
+    return f;
+}
+
 /* The 4-byte attitude view at 0x62..0x64: float32 LE degrees. */
 static void xgo_cli_attitude(xgo_cli_line_t *l)
 {
-    uint32_t bits = (uint32_t)l->bytes[0] | (uint32_t)l->bytes[1] << 8 |
-                    (uint32_t)l->bytes[2] << 16 | (uint32_t)l->bytes[3] << 24;
-    float f;
-    memcpy(&f, &bits, sizeof f);
+    float f = xgo_cli_le_float(l->bytes);
     snprintf(l->text, sizeof l->text, "%+.2f deg", (double)f);
     l->has_number = 1;
     l->number = (int64_t)((double)f * 1000.0 + (f < 0 ? -0.5 : 0.5));
     l->scale = 3;
     l->decimals = 3;
     l->unit = "deg";
+}
+
+/* 0x66..0x68: int16 big-endian, 0.01 degree. */
+static void xgo_cli_attitude16(xgo_cli_line_t *l)
+{
+    int16_t c = xgo_cli_be16(l->bytes);
+    xgo_cli_fixed(c, 2, 2, 1, l->text, sizeof l->text);
+    snprintf(l->text + strlen(l->text), sizeof l->text - strlen(l->text), " deg");
+    l->has_number = 1;
+    l->number = c;
+    l->scale = 2;
+    l->decimals = 2;
+    l->unit = "deg";
+}
+
+/* 0x65: acceleration (16384 = 1 g), angular rate (16.4 = 1 deg/s), angles. */
+static void xgo_cli_imu_block(xgo_cli_line_t *l)
+{
+    const uint8_t *b = l->bytes;
+    snprintf(l->text, sizeof l->text,
+             "accel %+.3f %+.3f %+.3f g, gyro %+.1f %+.1f %+.1f deg/s, rpy %+.2f %+.2f %+.2f deg",
+             xgo_cli_le16(b) / 16384.0, xgo_cli_le16(b + 2) / 16384.0, xgo_cli_le16(b + 4) / 16384.0,
+             xgo_cli_le16(b + 6) / 16.4, xgo_cli_le16(b + 8) / 16.4, xgo_cli_le16(b + 10) / 16.4,
+             (double)xgo_cli_le_float(b + 12), (double)xgo_cli_le_float(b + 16),
+             (double)xgo_cli_le_float(b + 20));
 }
 
 /* The diagnostic counters in data (from 0xC4 on), one line each. */
@@ -239,6 +279,16 @@ static size_t xgo_cli_line_at(xgo_cli_t *cli, uint8_t addr, const uint8_t *data,
         xgo_cli_attitude(l);
         return 4;
     }
+    if (first && addr == XGO_REG_IMU_BLOCK && n >= XGO_IMU_BLOCK_LEN) {
+        xgo_cli_line_init(l, addr, data, XGO_IMU_BLOCK_LEN);
+        xgo_cli_imu_block(l);
+        return XGO_IMU_BLOCK_LEN;
+    }
+    if (first && addr >= XGO_REG_IMU_ROLL16 && addr <= XGO_REG_IMU_YAW16 && n >= 2) {
+        xgo_cli_line_init(l, addr, data, 2);
+        xgo_cli_attitude16(l);
+        return 2;
+    }
     if (first && addr == XGO_REG_FIRMWARE) {
         /* any length read from 0x07 is the string */
         xgo_cli_line_init(l, addr, data, n < XGO_FIRMWARE_LEN ? n : XGO_FIRMWARE_LEN);
@@ -276,6 +326,24 @@ void xgo_cli_show_regs(xgo_cli_t *cli, uint8_t addr, const uint8_t *data, size_t
         xgo_cli_line_print(&l, json);
         i += took;
     }
+}
+
+void xgo_cli_show_write(xgo_cli_t *cli, uint8_t addr, const uint8_t *data, size_t n,
+                        xgo_host_json_t *json)
+{
+    if (addr == XGO_REG_TURN_TO && n == 2) {
+        /* the write view: one int16 big-endian heading, not two registers */
+        xgo_cli_line_t l;
+        int16_t deg = xgo_cli_be16(data);
+        xgo_cli_line_init(&l, addr, data, 2);
+        snprintf(l.text, sizeof l.text, "%+d deg", deg);
+        l.has_number = 1;
+        l.number = deg;
+        l.unit = "deg";
+        xgo_cli_line_print(&l, json);
+        return;
+    }
+    xgo_cli_show_regs(cli, addr, data, n, json);
 }
 
 void xgo_cli_reg_text(xgo_cli_t *cli, uint8_t addr, const uint8_t *data, size_t n, char *out,
