@@ -1,5 +1,6 @@
 # Cross-compiling the portable core for a Cortex-M0+ (no FPU), as a firmware
 # port would:  cmake -S . -B build-arm -DCMAKE_TOOLCHAIN_FILE=cmake/arm-none-eabi.cmake
+# With -DXGO_PORT=stm32f1|nrf51 the firmware image for that port too (ports/).
 set(CMAKE_SYSTEM_NAME Generic)
 set(CMAKE_SYSTEM_PROCESSOR arm)
 set(CMAKE_C_COMPILER arm-none-eabi-gcc)
@@ -7,7 +8,15 @@ set(CMAKE_AR arm-none-eabi-ar)
 set(CMAKE_RANLIB arm-none-eabi-ranlib)
 # No OS, no startup files: test the compiler by building a library only.
 set(CMAKE_TRY_COMPILE_TARGET_TYPE STATIC_LIBRARY)
-set(XGO_MCU_FLAGS "-mcpu=cortex-m0plus -mthumb" CACHE STRING "CPU flags for the core")
+# The CPU: a firmware port's own (-DXGO_PORT=...), else a Cortex-M0+.
+if(XGO_PORT STREQUAL "stm32f1")
+  set(xgo_default_cpu "-mcpu=cortex-m3 -mthumb")
+elseif(XGO_PORT STREQUAL "nrf51")
+  set(xgo_default_cpu "-mcpu=cortex-m0 -mthumb")
+else()
+  set(xgo_default_cpu "-mcpu=cortex-m0plus -mthumb")
+endif()
+set(XGO_MCU_FLAGS "${xgo_default_cpu}" CACHE STRING "CPU flags for the core")
 set(CMAKE_C_FLAGS_INIT "${XGO_MCU_FLAGS} -ffreestanding -ffunction-sections -fdata-sections")
 set(CMAKE_C_FLAGS_MINSIZEREL_INIT "-Os")
 set(XGO_BUILD_HOST OFF CACHE BOOL "" FORCE)

@@ -46,7 +46,7 @@ arm-none-eabi-gcc "${warn[@]}" "${armflags[@]}" -c test/support/board_io.c -o "$
 objs+=("$out/obj/board_io.o")
 # Our memcpy/memset must not be turned back into calls to themselves.
 arm-none-eabi-gcc "${warn[@]}" "${armflags[@]}" -fno-tree-loop-distribute-patterns \
-  -c "$mcu/libc_min.c" -o "$out/obj/libc_min.o"
+  -c ports/cortex-m/libc_min.c -o "$out/obj/libc_min.o"
 arm-none-eabi-gcc "${cpu[@]}" -c "$mcu/measure.S" -o "$out/obj/measure_s.o"
 objs+=("$out/obj/libc_min.o" "$out/obj/measure_s.o")
 link() { # link ELF MAIN_OBJECT

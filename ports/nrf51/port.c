@@ -1,0 +1,188 @@
+/*
+ * ports/nrf51 - the board as firmware for an nRF51822 (Cortex-M0, 16 MHz;
+ * QEMU's microbit machine, the BBC micro:bit).
+ *
+ *   UART0 (P0.24 TX, P0.25 RX), 115200 8N1: the host's serial line. RX by
+ *     interrupt into the device's ring; the interrupt masks itself while the
+ *     ring is full (the UART's FIFO then holds the bytes, the sender waits).
+ *     TX from the main loop, one byte per TXDRDY; while a byte is in flight
+ *     the TXDRDY interrupt wakes the loop.
+ *   TIMER0 at 1 MHz, compare 0 every 2000 us: one control period each. The
+ *     handler moves the compare on by whole periods and catches up if it
+ *     ran late (the COMPARE->CLEAR short would lose the time spent late).
+ *   Non-volatile data: nv_file.c (QEMU has no NVMC model).
+ *   Servo outputs: no servo bus here; the last positions are kept in the
+ *     port state for a debugger to look at.
+ */
+#include <stdint.h>
+
+#include "cortex_m.h"
+#include "nv_file.h"
+
+#define UART0_TASKS_STARTRX XGO_CM_REG(0x40002000u)
+#define UART0_TASKS_STARTTX XGO_CM_REG(0x40002008u)
+#define UART0_EVENTS_RXDRDY XGO_CM_REG(0x40002108u)
+#define UART0_EVENTS_TXDRDY XGO_CM_REG(0x4000211Cu)
+#define UART0_INTENSET XGO_CM_REG(0x40002304u)
+#define UART0_INTENCLR XGO_CM_REG(0x40002308u)
+#define UART0_ENABLE XGO_CM_REG(0x40002500u)
+#define UART0_PSELTXD XGO_CM_REG(0x4000250Cu)
+#define UART0_PSELRXD XGO_CM_REG(0x40002514u)
+#define UART0_RXD XGO_CM_REG(0x40002518u)
+#define UART0_TXD XGO_CM_REG(0x4000251Cu)
+#define UART0_BAUDRATE XGO_CM_REG(0x40002524u)
+#define UART_INT_RXDRDY (1u << 2)
+#define UART_INT_TXDRDY (1u << 7)
+#define UART_ENABLE_ON 4u
+#define UART_BAUD_115200 0x01D7E000u
+#define UART0_IRQ 2u
+#define PIN_TX 24u
+#define PIN_RX 25u
+
+#define TIMER0_TASKS_START XGO_CM_REG(0x40008000u)
+#define TIMER0_TASKS_CAPTURE1 XGO_CM_REG(0x40008044u)
+#define TIMER0_EVENTS_COMPARE0 XGO_CM_REG(0x40008140u)
+#define TIMER0_INTENSET XGO_CM_REG(0x40008304u)
+#define TIMER0_MODE XGO_CM_REG(0x40008504u)
+#define TIMER0_BITMODE XGO_CM_REG(0x40008508u)
+#define TIMER0_PRESCALER XGO_CM_REG(0x40008510u)
+#define TIMER0_CC0 XGO_CM_REG(0x40008540u)
+#define TIMER0_CC1 XGO_CM_REG(0x40008544u)
+#define TIMER_INT_COMPARE0 (1u << 16)
+#define TIMER_BITMODE_32 3u
+#define TIMER_PRESCALER_1MHZ 4u /* 16 MHz / 2^4 */
+#define TIMER0_IRQ 8u
+#define TICK_US (1000000u / XGO_TICK_HZ)
+
+struct xgo_port_s {
+    volatile uint32_t ms;
+    uint8_t tx_busy; /* a byte is in flight: room once TXDRDY */
+    xgo_nv_file_t nv;
+    int32_t servo_raw_mdeg[XGO_SERVO_COUNT];
+    uint16_t servo_limp;
+};
+
+static struct xgo_port_s port;
+static xgo_device_t device;
+
+/* ---- the port boundary (xgo/port.h) ------------------------------------- */
+
+uint32_t xgo_port_millis(xgo_port_t *p)
+{
+    return p->ms;
+}
+
+size_t xgo_port_tx_room(xgo_port_t *p)
+{
+    if (!p->tx_busy || UART0_EVENTS_TXDRDY) {
+        return 1;
+    }
+    UART0_INTENSET = UART_INT_TXDRDY; /* wake the loop when it is sent */
+    return 0;
+}
+
+void xgo_port_tx_write(xgo_port_t *p, const uint8_t *bytes, size_t n)
+{
+    if (n > 0) {
+        UART0_EVENTS_TXDRDY = 0;
+        UART0_TXD = bytes[0];
+        p->tx_busy = 1;
+    }
+}
+
+void xgo_port_rx_resume(xgo_port_t *p)
+{
+    (void)p;
+    UART0_INTENSET = UART_INT_RXDRDY;
+}
+
+int xgo_port_nv_load(xgo_port_t *p, xgo_board_nv_t *nv)
+{
+    return xgo_nv_file_load(&p->nv, nv);
+}
+
+int xgo_port_nv_save(xgo_port_t *p, const xgo_board_nv_t *nv)
+{
+    return xgo_nv_file_save(&p->nv, nv);
+}
+
+void xgo_port_servo_write(xgo_port_t *p, const int32_t raw_mdeg[XGO_SERVO_COUNT], uint16_t limp)
+{
+    unsigned i;
+    for (i = 0; i < XGO_SERVO_COUNT; i++) {
+        p->servo_raw_mdeg[i] = raw_mdeg[i];
+    }
+    p->servo_limp = limp;
+}
+
+/* ---- interrupts --------------------------------------------------------- */
+
+static void uart0_irq(void)
+{
+    while (UART0_EVENTS_RXDRDY) {
+        /* Full ring: hold the line (the FIFO keeps the bytes). Checked
+         * first: a byte arriving while the handler ran leaves the
+         * interrupt pending, so it runs once more after masking. */
+        if (!xgo_device_rx_accepting(&device)) {
+            UART0_INTENCLR = UART_INT_RXDRDY;
+            break;
+        }
+        /* Clear first: reading RXD raises it again while the FIFO has more. */
+        UART0_EVENTS_RXDRDY = 0;
+        (void)xgo_device_rx_put(&device, (uint8_t)UART0_RXD);
+    }
+    if (UART0_EVENTS_TXDRDY) {
+        UART0_INTENCLR = UART_INT_TXDRDY; /* only a wake-up for the loop */
+    }
+}
+
+/* One period per compare; if the handler ran late past the next compare,
+ * the periods missed are signalled now and the compare skips ahead, so the
+ * tick rate holds on average and the timer never waits for a wrap. */
+static void timer0_irq(void)
+{
+    uint32_t next = TIMER0_CC0;
+    TIMER0_EVENTS_COMPARE0 = 0;
+    do {
+        next += TICK_US;
+        port.ms += 1000u / XGO_TICK_HZ;
+        xgo_device_tick_due(&device);
+        TIMER0_CC0 = next;
+        TIMER0_TASKS_CAPTURE1 = 1;
+    } while ((int32_t)(TIMER0_CC1 - next) >= 0);
+}
+
+#define U xgo_cm_unexpected_handler
+__attribute__((section(".isr_vector"), used)) static const struct {
+    xgo_cm_system_vectors_t system;
+    xgo_cm_handler_t irq[32];
+} vectors = {XGO_CM_SYSTEM_VECTORS(U),
+             {U, U, uart0_irq /* 2 */, U, U, U, U, U, timer0_irq /* 8 */, U, U, U, U, U, U, U,
+              U, U, U, U, U, U, U, U, U, U, U, U, U, U, U, U}};
+#undef U
+
+/* ---- start-up ----------------------------------------------------------- */
+
+int main(void)
+{
+    xgo_nv_file_init(&port.nv);
+    xgo_device_init(&device, &port, NULL);
+    UART0_ENABLE = UART_ENABLE_ON; /* first: the UART ignores the rest until then */
+    UART0_PSELTXD = PIN_TX;
+    UART0_PSELRXD = PIN_RX;
+    UART0_BAUDRATE = UART_BAUD_115200;
+    UART0_EVENTS_RXDRDY = 0;
+    UART0_EVENTS_TXDRDY = 0;
+    UART0_TASKS_STARTTX = 1;
+    UART0_TASKS_STARTRX = 1;
+    UART0_INTENSET = UART_INT_RXDRDY;
+    XGO_CM_NVIC_ISER(0) = (1u << UART0_IRQ) | (1u << TIMER0_IRQ);
+    TIMER0_MODE = 0; /* timer */
+    TIMER0_BITMODE = TIMER_BITMODE_32;
+    TIMER0_PRESCALER = TIMER_PRESCALER_1MHZ;
+    TIMER0_CC0 = TICK_US;
+    TIMER0_INTENSET = TIMER_INT_COMPARE0;
+    TIMER0_TASKS_START = 1;
+    xgo_cm_serve(&device);
+    return 0;
+}
