@@ -75,6 +75,7 @@ typedef struct xgo_board_s {
     uint16_t tx_head;               /* index of the oldest byte */
     uint16_t tx_len;
     uint32_t tx_overflows;
+    uint32_t framing_errors;        /* bytes the UART received with a bad stop bit */
     uint32_t ticks;
     uint8_t source;                 /* xgo_source_t of the frame being handled */
     xgo_motion_t motion;
@@ -104,6 +105,12 @@ void xgo_board_set_trace(xgo_board_t *b, xgo_trace_fn fn, void *ctx);
 /* Bytes from the host that arrived at now_ms. Requests are applied and
  * answered at once (replies go to the transmit buffer). */
 void xgo_board_receive(xgo_board_t *b, const uint8_t *bytes, size_t n, uint32_t now_ms);
+
+/* The UART received n bytes with a framing error (stop bit 0: the host
+ * sends at another speed, or noise). They never reach the parser; the port
+ * (an MCU's UART interrupt, xgo-emu --uart-baud) drops them and counts them
+ * here (diagnostic counter framing_errors). */
+void xgo_board_framing_errors(xgo_board_t *b, uint32_t n);
 
 /* Apply the parser's silence timeout at now_ms. */
 void xgo_board_poll(xgo_board_t *b, uint32_t now_ms);

@@ -163,7 +163,8 @@ enum xgo_reg_addr_e {
     X(REJECTED_VALUE, rejected_value, regs.stats.rejected_value)                       \
     X(IGNORED_UNMAPPED, ignored_unmapped, regs.stats.ignored_unmapped)                 \
     X(TX_OVERFLOW, tx_overflow, tx_overflows)                                          \
-    X(HANGUP_DISCARDS, hangup_discards, parser.stats.hangup_discards)
+    X(HANGUP_DISCARDS, hangup_discards, parser.stats.hangup_discards)                  \
+    X(FRAMING_ERRORS, framing_errors, framing_errors)
 
 /* XGO_DIAG_FRAMES_OK == 0, ... */
 typedef enum xgo_diag_e {

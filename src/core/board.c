@@ -229,6 +229,11 @@ xgo_drop_reason_t xgo_board_write(xgo_board_t *b, uint8_t source, uint8_t addr,
     return why;
 }
 
+void xgo_board_framing_errors(xgo_board_t *b, uint32_t n)
+{
+    b->framing_errors += n;
+}
+
 void xgo_board_poll(xgo_board_t *b, uint32_t now_ms)
 {
     xgo_parser_poll(&b->parser, now_ms);

@@ -31,6 +31,7 @@
 #include <unistd.h>
 
 #include "clock.h"
+#include "uart_model.h"
 
 #define XGO_HOST_TICK_US (1000000u / XGO_TICK_HZ)
 
@@ -68,6 +69,11 @@ void xgo_host_loop_init(xgo_host_loop_t *l, xgo_board_t *board, const xgo_host_p
 void xgo_host_loop_set_state(xgo_host_loop_t *l, xgo_host_state_t *state)
 {
     l->state = state;
+}
+
+void xgo_host_loop_set_uart(xgo_host_loop_t *l, uint32_t board_baud)
+{
+    l->uart_baud = board_baud;
 }
 
 int xgo_host_loop_add_service(xgo_host_loop_t *l, const xgo_host_service_t *s)
@@ -171,6 +177,16 @@ static void xgo_host_loop_discard_replies(xgo_host_loop_t *l)
 
 /* Moves the board's replies into the output queue. ready_us: the earliest a
  * reply can start on the wire (its request's last byte has arrived). */
+/* --uart-baud: reply bytes as the host's port hears them at its speed
+ * (uart_model.h); n <= sizeof chunk / XGO_HOST_UART_GROWTH. */
+static size_t xgo_host_loop_uart_out(const xgo_host_loop_t *l, uint8_t *chunk, size_t n, size_t cap)
+{
+    uint8_t sent[512u / XGO_HOST_UART_GROWTH];
+    memcpy(sent, chunk, n);
+    return xgo_host_uart_to_host(l->uart_baud, xgo_host_pty_host_baud(l->pty), sent, n, chunk,
+                                 cap);
+}
+
 static void xgo_host_loop_take_replies(xgo_host_loop_t *l, uint64_t now_us, uint64_t ready_us)
 {
     uint8_t chunk[512];
@@ -180,13 +196,19 @@ static void xgo_host_loop_take_replies(xgo_host_loop_t *l, uint64_t now_us, uint
     }
     while (xgo_board_tx_pending(l->board) > 0) {
         size_t room = xgo_host_outq_room(&l->out);
-        size_t n;
-        if (room == 0) {
+        size_t n, want = room < sizeof chunk ? room : sizeof chunk;
+        if (l->uart_baud != 0) {
+            want /= XGO_HOST_UART_GROWTH; /* what the host hears may be longer */
+        }
+        if (want == 0) {
             return; /* stays in the board until the host reads */
         }
-        n = xgo_board_transmit(l->board, chunk, room < sizeof chunk ? room : sizeof chunk);
+        n = xgo_board_transmit(l->board, chunk, want);
         if (n == 0) {
             return;
+        }
+        if (l->uart_baud != 0) {
+            n = xgo_host_loop_uart_out(l, chunk, n, room < sizeof chunk ? room : sizeof chunk);
         }
         if (l->baud_pacing) {
             uint32_t bytes_per_s = xgo_host_loop_bytes_per_s(l);
@@ -266,6 +288,21 @@ static void xgo_host_loop_host_left(xgo_host_loop_t *l)
     l->rx_wire_free_us = 0;
 }
 
+/* --uart-baud: the board's UART hears the host's bytes at the speed the
+ * host's port is set to (uart_model.h); bytes with a framing error are
+ * counted by the board and dropped. Returns the bytes left in l->in. */
+static size_t xgo_host_loop_uart_in(xgo_host_loop_t *l, size_t n)
+{
+    uint8_t sent[XGO_HOST_INBUF_BYTES / XGO_HOST_UART_GROWTH];
+    uint32_t framing = 0;
+    size_t kept;
+    memcpy(sent, l->in, n);
+    kept = xgo_host_uart_to_board(xgo_host_pty_host_baud(l->pty), l->uart_baud, sent, n, l->in,
+                                  sizeof l->in, &framing);
+    xgo_board_framing_errors(l->board, framing);
+    return kept;
+}
+
 static void xgo_host_loop_read(xgo_host_loop_t *l, uint64_t now_us)
 {
     ssize_t n;
@@ -273,13 +310,17 @@ static void xgo_host_loop_read(xgo_host_loop_t *l, uint64_t now_us)
         return; /* earlier input not fed yet: leave the rest in the kernel */
     }
     do {
-        n = read(l->pty->master_fd, l->in, sizeof l->in);
+        n = read(l->pty->master_fd, l->in,
+                 l->uart_baud != 0 ? sizeof l->in / XGO_HOST_UART_GROWTH : sizeof l->in);
     } while (n < 0 && errno == EINTR);
     if (n > 0) {
+        l->counters.bytes_in += (uint64_t)n;
+        if (l->uart_baud != 0 && (n = (ssize_t)xgo_host_loop_uart_in(l, (size_t)n)) == 0) {
+            return; /* nothing the board's UART could take */
+        }
         l->in_orphaned = l->host_gone;
         l->in_len = (size_t)n;
         l->in_fed = 0;
-        l->counters.bytes_in += (uint64_t)n;
         if (l->baud_pacing) {
             /* A real UART would still be receiving: the bytes arrive one
              * wire time after another, starting now or when the previous

@@ -54,6 +54,7 @@ typedef struct xgo_host_loop_s {
     xgo_host_trace_t *trace;   /* NULL without --trace */
     xgo_host_state_t *state;   /* NULL without --state */
     int baud_pacing;
+    uint32_t uart_baud;        /* --uart-baud: the board's UART speed; 0 = no line model */
     volatile sig_atomic_t *stop; /* set by a signal handler */
 
     uint8_t in[XGO_HOST_INBUF_BYTES]; /* read from the host, not yet fed */
@@ -92,6 +93,11 @@ void xgo_host_loop_init(xgo_host_loop_t *l, xgo_board_t *board, const xgo_host_p
 /* Keep the board's non-volatile data saved in state while serving: checked
  * after every round of ticks (a save happens only when it changed). */
 void xgo_host_loop_set_state(xgo_host_loop_t *l, xgo_host_state_t *state);
+
+/* Model the board's UART at board_baud (0: off): a host whose port is set to
+ * another speed gets what a real UART gives it, garbled bytes both ways
+ * (uart_model.h), framing errors counted in the diagnostic block. */
+void xgo_host_loop_set_uart(xgo_host_loop_t *l, uint32_t board_baud);
 
 /* Serves s too from now on (s must outlive the loop). Returns 0, or -1
  * when XGO_HOST_MAX_SERVICES are already added. */

@@ -145,6 +145,7 @@ int main(int argc, char **argv)
     }
     xgo_host_loop_init(&loop, &board, &pty, opts.trace ? &trace : NULL, opts.baud_pacing,
                        &xgo_host_stop_requested);
+    xgo_host_loop_set_uart(&loop, opts.uart_baud);
     if (opts.state_path != NULL) {
         xgo_host_loop_set_state(&loop, &state);
     }

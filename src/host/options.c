@@ -8,6 +8,8 @@
  */
 #include "options.h"
 
+#include "uart_model.h"
+
 #include <arpa/inet.h>
 #include <errno.h>
 #include <stdlib.h>
@@ -77,6 +79,19 @@ static xgo_host_apply_t xgo_host_apply_baud_pacing(xgo_host_options_t *opts, con
     (void)err;
     (void)err_size;
     opts->baud_pacing = 1;
+    return XGO_HOST_APPLY_OK;
+}
+
+static xgo_host_apply_t xgo_host_apply_uart_baud(xgo_host_options_t *opts, const char *value,
+                                                  char *err, size_t err_size)
+{
+    unsigned long baud;
+    if (!xgo_host_parse_ulong(value, XGO_HOST_UART_MIN_BAUD, XGO_HOST_UART_MAX_BAUD, &baud)) {
+        snprintf(err, err_size, "--uart-baud must be a whole number %u..%u, not '%s'",
+                 XGO_HOST_UART_MIN_BAUD, XGO_HOST_UART_MAX_BAUD, value);
+        return XGO_HOST_APPLY_BAD_VALUE;
+    }
+    opts->uart_baud = (uint32_t)baud;
     return XGO_HOST_APPLY_OK;
 }
 
@@ -302,6 +317,10 @@ static const xgo_host_option_t xgo_host_option_table[] = {
     {"trace", 0, NULL, "print one line per frame in, out or dropped on stderr", xgo_host_apply_trace},
     {"baud-pacing", 0, NULL, "delay replies by their wire time at the speed the host set",
      xgo_host_apply_baud_pacing},
+    {"uart-baud", 0, "N",
+     "the board's UART runs at N baud (the robot: 115200): a host port set\n"
+     "to another speed gets garbled bytes and no answer, framing errors counted",
+     xgo_host_apply_uart_baud},
     {"profile", 0, "MODEL", "board model: mini (default) or lite", xgo_host_apply_profile},
     {"battery", 0, "PCT", "initial battery level 0..100 (default 100)", xgo_host_apply_battery},
     {"timeout-ms", 0, "N", "abandon a partial frame after N ms of silence, 0 = never (default 20)",

@@ -18,6 +18,7 @@ typedef struct xgo_host_options_s {
     const char *link_path;    /* --link, NULL = no symlink */
     int trace;                /* --trace */
     int baud_pacing;          /* --baud-pacing */
+    uint32_t uart_baud;       /* --uart-baud: the board's UART speed, 0 = no line model */
     const char *state_path;   /* --state, NULL = nothing kept across runs */
     int32_t ground_roll_mdeg; /* --ground-tilt, 0,0 = level */
     int32_t ground_pitch_mdeg;
