@@ -28,9 +28,9 @@
 
 #include "reference.h"
 #include "unity.h"
-#include "xgo/actions.h"
+#include "actions.h"
 #include "xgo/board.h"
-#include "xgo/kinematics.h"
+#include "kinematics.h"
 #include "xgo/profile.h"
 
 #ifndef M_PI

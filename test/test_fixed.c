@@ -11,7 +11,7 @@
 
 #include "board_io.h" /* xgo_test_xorshift* */
 #include "unity.h"
-#include "xgo/fixed.h"
+#include "fixed.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846

@@ -11,7 +11,7 @@
 #include <string.h>
 
 #include "unity.h"
-#include "xgo/gait.h"
+#include "gait.h"
 
 #define DT 0.002
 #define PI 3.14159265358979323846

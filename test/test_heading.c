@@ -9,7 +9,7 @@
 #include "board_io.h"
 #include "unity.h"
 #include "xgo/board.h"
-#include "xgo/heading.h"
+#include "heading.h"
 
 static xgo_board_t board;
 

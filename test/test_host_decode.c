@@ -7,7 +7,7 @@
 
 #include "decode.h"
 #include "unity.h"
-#include "xgo/actions.h"
+#include "actions.h"
 #include "xgo/regs.h"
 
 void setUp(void)

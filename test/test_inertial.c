@@ -12,7 +12,8 @@
 #include "board_io.h"
 #include "unity.h"
 #include "xgo/board.h"
-#include "xgo/inertial.h"
+#include "xgo/emulator.h"
+#include "inertial.h"
 
 static xgo_board_t board;
 

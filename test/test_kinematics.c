@@ -16,7 +16,7 @@
 #include "codec.h"
 #include "reference.h"
 #include "unity.h"
-#include "xgo/kinematics.h"
+#include "kinematics.h"
 #include "xgo/regs.h"
 
 #ifndef M_PI

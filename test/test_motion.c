@@ -8,10 +8,14 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "actions.h" /* xgo_action_duration_ticks, xgo_action_next_in_cycle */
 #include "board_io.h"
 #include "codec.h"
+#include "gait.h"   /* XGO_GAIT_STOP_TICKS_MAX */
+#include "motion.h" /* XGO_JOINT_STEP_MAX_MDEG */
 #include "unity.h"
 #include "xgo/board.h"
+#include "xgo/emulator.h"
 
 static xgo_board_t board;
 
@@ -59,9 +63,31 @@ static uint8_t vendor_byte(double v, double limit)
     return (uint8_t)(int)(255.0 / (2 * limit) * (v + limit));
 }
 
+/* The board seen through its observers (xgo/board.h). */
 static int32_t joint(unsigned i)
 {
-    return board.motion.servos.angle_mdeg[i];
+    int32_t q[XGO_SERVO_COUNT];
+    xgo_board_joints_mdeg(&board, q);
+    return q[i];
+}
+
+static xgo_gait_status_t gait(void)
+{
+    xgo_gait_status_t g;
+    xgo_board_gait(&board, &g);
+    return g;
+}
+
+static int standing(void)
+{
+    return !gait().walking;
+}
+
+static int32_t produced_vx(void)
+{
+    int32_t cmd[3], produced[3];
+    xgo_board_velocity(&board, cmd, produced);
+    return produced[0];
 }
 
 /* ------------------------------------------------------------ modes */
@@ -97,38 +123,39 @@ static void test_dead_band_7f_and_80_both_mean_stop(void)
 
     wr(XGO_REG_VX, vendor_byte(20, 25));
     ticks(1000);
-    TEST_ASSERT_FALSE(xgo_gait_is_standing(&board.motion.gait));
+    TEST_ASSERT_FALSE(standing());
     wr(XGO_REG_VX, vendor_byte(0, 25)); /* stop() sends 0x7F */
     TEST_ASSERT_EQUAL_HEX8(0x7F, vendor_byte(0, 25));
     ticks(XGO_GAIT_STOP_TICKS_MAX);
-    TEST_ASSERT_TRUE(xgo_gait_is_standing(&board.motion.gait));
-    TEST_ASSERT_EQUAL_INT32(0, board.motion.gait.vx_um_s);
+    TEST_ASSERT_TRUE(standing());
+    TEST_ASSERT_EQUAL_INT32(0, produced_vx());
 }
 
 /* ------------------------------------------------------------ whole unit */
 
 static void test_walking_forward_moves_stance_feet_backward(void)
 {
+    xgo_gait_status_t g;
     unsigned t, leg, seen = 0;
     wr(XGO_REG_VX, vendor_byte(15, 25));
     ticks(1000);
     for (t = 0; t < 200; t++) {
         int32_t before[4];
         for (leg = 0; leg < 4; leg++) {
-            before[leg] = board.motion.gait.foot_um[leg].x;
+            before[leg] = gait().feet_um[leg].x;
         }
         ticks(1);
+        g = gait();
         for (leg = 0; leg < 4; leg++) {
-            if (board.motion.gait.contact[leg] && board.motion.gait.foot_um[leg].z == 0 &&
-                before[leg] != board.motion.gait.foot_um[leg].x) {
-                TEST_ASSERT_TRUE(board.motion.gait.foot_um[leg].x < before[leg]);
+            if ((g.contact >> leg & 1u) && g.feet_um[leg].z == 0 && before[leg] != g.feet_um[leg].x) {
+                TEST_ASSERT_TRUE(g.feet_um[leg].x < before[leg]);
                 seen++;
             }
         }
     }
     TEST_ASSERT_GREATER_THAN_UINT(100, seen);
     /* forward speed 15 (vendor units, cm/s) = 150 mm/s produced */
-    TEST_ASSERT_INT32_WITHIN(15000, 150000, board.motion.gait.vx_um_s);
+    TEST_ASSERT_INT32_WITHIN(15000, 150000, produced_vx());
 }
 
 static void test_turning_integrates_yaw(void)
@@ -142,7 +169,7 @@ static void test_turning_integrates_yaw(void)
     TEST_ASSERT_DOUBLE_WITHIN(10.0, -165.0, yaw);
     wr(XGO_REG_VYAW, 0x80);
     ticks(XGO_GAIT_STOP_TICKS_MAX);
-    TEST_ASSERT_TRUE(xgo_gait_is_standing(&board.motion.gait));
+    TEST_ASSERT_TRUE(standing());
 }
 
 static void test_body_attitude_shows_on_the_imu(void)
@@ -159,10 +186,12 @@ static void test_body_attitude_shows_on_the_imu(void)
 static void test_body_height_changes_the_legs(void)
 {
     const int32_t knee_before = joint(XGO_JOINT_KNEE);
+    xgo_body_pose_t pose;
     wr(XGO_REG_BODY_Z, 0x00); /* lowest: 75 mm */
     ticks(XGO_TICK_HZ);
     TEST_ASSERT_TRUE(joint(XGO_JOINT_KNEE) < knee_before - 10000); /* knee folds */
-    TEST_ASSERT_INT32_WITHIN(1, 75000, board.motion.pose.z_um);
+    xgo_board_body_pose(&board, &pose);
+    TEST_ASSERT_INT32_WITHIN(1, 75000, pose.z_um);
 }
 
 static void test_periodic_roll_has_the_register_period(void)
@@ -211,12 +240,12 @@ static void test_mark_time_steps_in_place(void)
     wr(XGO_REG_MARK_TIME, 255); /* 35 mm */
     for (t = 0; t < 2 * XGO_TICK_HZ; t++) {
         ticks(1);
-        if (board.motion.gait.foot_um[0].z > top) {
-            top = board.motion.gait.foot_um[0].z;
+        if (gait().feet_um[0].z > top) {
+            top = gait().feet_um[0].z;
         }
     }
     TEST_ASSERT_INT32_WITHIN(1000, 35000, top);
-    TEST_ASSERT_EQUAL_INT32(0, board.motion.gait.vx_um_s);
+    TEST_ASSERT_EQUAL_INT32(0, produced_vx());
 }
 
 /* ------------------------------------------------------------ leg, servo, debug */
@@ -382,7 +411,7 @@ static void test_standing_posture_stops_and_clears_motion(void)
     TEST_ASSERT_EQUAL_HEX8(0x80, rd(XGO_REG_VX));
     TEST_ASSERT_EQUAL_HEX8(0x80, rd(XGO_REG_BODY_ROLL));
     ticks(XGO_GAIT_STOP_TICKS_MAX);
-    TEST_ASSERT_TRUE(xgo_gait_is_standing(&board.motion.gait));
+    TEST_ASSERT_TRUE(standing());
 }
 
 /* ------------------------------------------------------------ actions */
@@ -406,16 +435,16 @@ static void test_actions_move_the_body_and_end_standing(void)
 {
     int32_t stand[XGO_SERVO_COUNT];
     unsigned i, moved = 0;
-    memcpy(stand, board.motion.servos.angle_mdeg, sizeof stand);
+    xgo_board_joints_mdeg(&board, stand);
     wr(XGO_REG_ACTION, XGO_ACTION_LIE_DOWN);
     ticks(xgo_action_duration_ticks(XGO_ACTION_LIE_DOWN) / 2);
     for (i = 0; i < XGO_SERVO_COUNT; i++) {
-        moved += abs(board.motion.servos.angle_mdeg[i] - stand[i]) > 5000;
+        moved += abs(joint(i) - stand[i]) > 5000;
     }
     TEST_ASSERT_GREATER_THAN_UINT(0, moved);
     ticks(xgo_action_duration_ticks(XGO_ACTION_LIE_DOWN));
     for (i = 0; i < XGO_SERVO_COUNT; i++) {
-        TEST_ASSERT_INT32_WITHIN(1, stand[i], board.motion.servos.angle_mdeg[i]);
+        TEST_ASSERT_INT32_WITHIN(1, stand[i], joint(i));
     }
 }
 
@@ -424,7 +453,8 @@ static void test_reset_restores_the_initial_table(void)
     static const uint8_t touched[] = {0x09, 0x30, 0x31, 0x32, 0x33, 0x36, 0x39, 0x3C, 0x3D, 0x61, 0x80};
     uint8_t initial[256];
     unsigned i;
-    memcpy(initial, board.regs.mem, sizeof initial);
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_board_read(&board, 0x00, 0x80, initial));
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_board_read(&board, 0x80, 0x80, initial + 0x80));
     for (i = 0; i < sizeof touched; i++) {
         wr(touched[i], 1);
     }
@@ -440,7 +470,7 @@ static void test_reset_restores_the_initial_table(void)
     TEST_ASSERT_EQUAL_HEX8('R', rd(0x13)); /* the name is non-volatile */
     ticks(XGO_TICK_HZ);
     TEST_ASSERT_EQUAL_HEX8(0, rd(XGO_REG_ACTION));
-    TEST_ASSERT_TRUE(xgo_gait_is_standing(&board.motion.gait));
+    TEST_ASSERT_TRUE(standing());
 }
 
 static void test_perform_mode_cycles_actions(void)
@@ -460,6 +490,7 @@ static void test_perform_mode_cycles_actions(void)
 static void test_battery_drains_faster_while_walking(void)
 {
     xgo_board_t idle;
+    uint8_t idle_pct;
     unsigned t;
     xgo_board_init(&idle, NULL);
     wr(XGO_REG_VX, 0xFF);
@@ -468,7 +499,8 @@ static void test_battery_drains_faster_while_walking(void)
         xgo_board_tick(&idle);
     }
     /* 3 min: idle 2.5 % (100 % / 120 min), walking 5 % (100 % / 60 min) */
-    TEST_ASSERT_EQUAL_UINT8(98, xgo_regs_get(&idle.regs, XGO_REG_BATTERY));
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_board_read(&idle, XGO_REG_BATTERY, 1, &idle_pct));
+    TEST_ASSERT_EQUAL_UINT8(98, idle_pct);
     TEST_ASSERT_EQUAL_UINT8(95, rd(XGO_REG_BATTERY));
 }
 
@@ -499,9 +531,9 @@ static void test_random_commands_never_jump_joints_or_break_limits(void)
                                    0x39, 0x3A, 0x3B, 0x3C, 0x3D, 0x3E, 0x40, 0x42, 0x45, 0x4B, 0x50,
                                    0x55, 0x5B, 0x5C, 0x5D, 0x61, 0x80, 0x81, 0x82, 0x03, 0x04};
     const xgo_profile_t *p = xgo_profile_mini();
-    int32_t prev[XGO_SERVO_COUNT];
+    int32_t prev[XGO_SERVO_COUNT], now[XGO_SERVO_COUNT];
     unsigned t, i;
-    memcpy(prev, board.motion.servos.angle_mdeg, sizeof prev);
+    xgo_board_joints_mdeg(&board, prev);
     for (t = 0; t < 200000; t++) {
         if (rng() % 50 == 0) {
             const uint8_t addr = regs[rng() % sizeof regs];
@@ -509,8 +541,9 @@ static void test_random_commands_never_jump_joints_or_break_limits(void)
             (void)xgo_board_write(&board, XGO_SOURCE_CLI, addr, &v, 1); /* invalid ones are rejected */
         }
         ticks(1);
+        xgo_board_joints_mdeg(&board, now);
         for (i = 0; i < XGO_SERVO_COUNT; i++) {
-            const int32_t a = board.motion.servos.angle_mdeg[i];
+            const int32_t a = now[i];
             TEST_ASSERT_LESS_OR_EQUAL_INT32(XGO_JOINT_STEP_MAX_MDEG, abs(a - prev[i]));
             TEST_ASSERT_TRUE(a >= p->joint_mdeg[i % 3].lo && a <= p->joint_mdeg[i % 3].hi);
             prev[i] = a;

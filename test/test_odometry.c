@@ -8,10 +8,12 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "actions.h" /* xgo_action_duration_ticks */
 #include "board_io.h"
 #include "codec.h"
 #include "unity.h"
 #include "xgo/board.h"
+#include "xgo/emulator.h"
 
 static xgo_board_t board;
 
@@ -377,7 +379,7 @@ static void test_battery_input_sets_the_charge(void)
     uint8_t v;
     xgo_board_set_battery(&board, 37);
     TEST_ASSERT_EQUAL_UINT8(37, xgo_board_battery_pct(&board));
-    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_read(&board.regs, XGO_REG_BATTERY, 1, &v));
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_board_read(&board, XGO_REG_BATTERY, 1, &v));
     TEST_ASSERT_EQUAL_UINT8(37, v);
     xgo_board_set_battery(&board, 250);
     TEST_ASSERT_EQUAL_UINT8(100, xgo_board_battery_pct(&board));

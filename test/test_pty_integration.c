@@ -205,7 +205,7 @@ static void compute_standing_reply(void)
     for (i = 0; i < 1000; i++) {
         xgo_board_tick(&board);
     }
-    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_read(&board.regs, 0x50, 12, joints));
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_board_read(&board, 0x50, 12, joints));
     TEST_ASSERT_EQUAL_UINT(20, xgo_frame_encode(XGO_TYPE_READ_REPLY, 0x50, joints, 12, k_spec_reply,
                                                 sizeof k_spec_reply));
     TEST_ASSERT_EQUAL_HEX8(0x14, k_spec_reply[2]); /* the spec's framing */

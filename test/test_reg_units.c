@@ -7,6 +7,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "regfile.h" /* the register file itself, for the attitude view */
 #include "unity.h"
 #include "xgo/profile.h"
 #include "xgo/reg_units.h"

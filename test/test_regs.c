@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "codec.h"
+#include "regfile.h"
 #include "unity.h"
 #include "xgo/regs.h"
 

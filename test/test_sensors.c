@@ -10,7 +10,7 @@
 
 #include "unity.h"
 #include "xgo/config.h"
-#include "xgo/sensors.h"
+#include "sensors.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846

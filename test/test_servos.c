@@ -9,7 +9,7 @@
 
 #include "unity.h"
 #include "xgo/profile.h"
-#include "xgo/servos.h"
+#include "servos.h"
 
 static xgo_servos_t s;
 static const xgo_profile_t *p;

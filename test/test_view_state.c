@@ -17,8 +17,9 @@
 #include "view_frames.h"
 #include "view_meta.h"
 #include "view_state.h"
-#include "xgo/actions.h"
+#include "actions.h"
 #include "xgo/board.h"
+#include "xgo/emulator.h"
 
 static xgo_board_t g_board;
 static xgo_host_view_frames_t g_frames;

@@ -29,6 +29,7 @@ static double now_s(void)
 int main(int argc, char **argv)
 {
     static xgo_board_t board;
+    xgo_gait_status_t gait;
     const long n = argc > 1 ? atol(argv[1]) : 200000L;
     long i;
     double t0, dt;
@@ -54,5 +55,6 @@ int main(int argc, char **argv)
            "(wall clock); %.1f%% of one core at %u Hz\n",
            n, (double)n / dt, dt / (double)n * 1e6, 100.0 * XGO_TICK_HZ * dt / (double)n,
            XGO_TICK_HZ);
-    return xgo_gait_is_standing(&board.motion.gait) ? 1 : 0;
+    xgo_board_gait(&board, &gait);
+    return gait.walking ? 0 : 1;
 }

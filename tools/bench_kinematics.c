@@ -30,7 +30,7 @@
 
 #include "codec.h"
 #include "reference.h"
-#include "xgo/kinematics.h"
+#include "kinematics.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846

@@ -14,6 +14,19 @@
  * was not asked for: only read requests, and a request to upgrade the
  * firmware (1 written to 0x05, answered XGO_UPGRADE_ANSWER), produce output.
  *
+ * The public API is this header and what it includes (xgo/config.h options,
+ * xgo/types.h values, xgo/profile.h models and numbering, xgo/protocol.h
+ * frames and parser, xgo/regs.h the register map). xgo/board_state.h only
+ * makes xgo_board_t complete so that the caller can own it: its fields are
+ * private, read the board through the observers below. Emulator-only inputs
+ * (ground tilt, battery, a shove) are in xgo/emulator.h; the core's modules
+ * have private headers in src/core.
+ *
+ * Return values: a call that can refuse its input returns why
+ * (xgo_drop_reason_t; XGO_DROP_NONE, 0, means done); a call whose only
+ * outcome is done or refused returns int 1 (done) or 0 (refused, nothing
+ * changed); observers return the value or fill out-parameters.
+ *
  * Portable: no OS calls, no heap, no globals, no floating point.
  */
 #ifndef XGO_BOARD_H
@@ -22,10 +35,12 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "xgo/board_state.h"
 #include "xgo/config.h"
-#include "xgo/motion.h"
+#include "xgo/profile.h"
 #include "xgo/protocol.h"
 #include "xgo/regs.h"
+#include "xgo/types.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -173,22 +188,24 @@ void xgo_board_velocity(const xgo_board_t *b, int32_t cmd[3], int32_t produced[3
 /* What the IMU reports: roll, pitch, yaw. */
 void xgo_board_imu_mdeg(const xgo_board_t *b, int32_t rpy[3]);
 uint8_t xgo_board_battery_pct(const xgo_board_t *b);
-/* Where the robot is on the floor (leg odometry, xgo/odometry.h): origin at
- * the power-up position, x forward at power-up, y left, yaw CCW. */
+/* Where the robot is on the floor (leg odometry): origin at the power-up
+ * position, x forward at power-up, y left, yaw CCW. */
 void xgo_board_world_pose(const xgo_board_t *b, xgo_world_pose_t *out);
 
-/* ---- Emulator inputs: the world around the board, which a real board
- * senses rather than is told. */
+/* The gait generator (whole-unit mode): where it puts the feet, before the
+ * body pose and the IK, and where it is in its cycle. */
+typedef struct xgo_gait_status_s {
+    xgo_vec3_t feet_um[XGO_LEG_COUNT]; /* machine frame relative to the body
+                                          centre, z up, 0 on the ground */
+    uint8_t contact;  /* bit leg: in stance */
+    uint8_t walking;  /* 0: standing, four feet at their stance points */
+    uint8_t type;     /* gait in use (register 0x09 values) */
+    uint32_t phase;   /* master phase, 2^32 = one cycle */
+} xgo_gait_status_t;
+void xgo_board_gait(const xgo_board_t *b, xgo_gait_status_t *out);
 
-/* The ground under the robot tilts by roll/pitch (the IMU reads the tilt;
- * self-stabilisation, 0x61 = 1, levels the body). */
-void xgo_board_set_ground_tilt(xgo_board_t *b, int32_t roll_mdeg, int32_t pitch_mdeg);
-/* Ground tilt as set. */
-void xgo_board_ground_tilt(const xgo_board_t *b, int32_t *roll_mdeg, int32_t *pitch_mdeg);
-/* Battery charge now (0..100, larger values are 100); it drains from there. */
-void xgo_board_set_battery(xgo_board_t *b, uint8_t pct);
-/* A shove: the body tips by roll/pitch and springs back (xgo_imu_push). */
-void xgo_board_push(xgo_board_t *b, int32_t roll_mdeg, int32_t pitch_mdeg);
+/* Bytes of a frame the parser holds so far (0 between frames). */
+size_t xgo_board_rx_pending(const xgo_board_t *b);
 
 /* The board's non-volatile data (a real board keeps it in flash): the
  * Bluetooth name and the servo zero offsets. A host port saves it when

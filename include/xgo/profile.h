@@ -50,6 +50,9 @@ typedef enum xgo_joint_e {
 
 typedef enum xgo_axis_e { XGO_AXIS_X = 0, XGO_AXIS_Y = 1, XGO_AXIS_Z = 2, XGO_AXIS_COUNT = 3 } xgo_axis_t;
 
+/* Joints in all: index = 3 * leg + joint, register order 0x50..0x5B. */
+#define XGO_SERVO_COUNT (XGO_LEG_COUNT * XGO_JOINT_COUNT)
+
 /* Register of a foot coordinate (leg frame) and of a servo position. */
 #define XGO_FOOT_REG(leg, axis) (0x40u + 3u * (unsigned)(leg) + (unsigned)(axis))
 #define XGO_SERVO_REG(leg, joint) (0x50u + 3u * (unsigned)(leg) + (unsigned)(joint))

@@ -1,5 +1,10 @@
 /*
- * xgo/regs.h - the board's 256-byte register file (the spec's MemTable).
+ * xgo/regs.h - the register map of the board (the spec's MemTable): what a
+ * host can read and write, and what the values mean. The one source of truth
+ * for every tool and page: addresses, widths, access, initial values and
+ * valid sets (XGO_REG_LIST), the diagnostic counters (XGO_DIAG_LIST) and the
+ * value sets of the mode, action and unload registers. The register file
+ * that holds the values is the core's (private, src/core/regfile.h).
  *
  * One descriptor per documented register (XGO_REG_LIST below) gives its
  * address, width, host access, initial value and valid set. The file is a flat
@@ -188,25 +193,6 @@ typedef struct xgo_reg_desc_s {
     const char *name;
 } xgo_reg_desc_t;
 
-typedef struct xgo_regs_stats_s {
-    uint32_t writes_ok;
-    uint32_t rejected_read_only;
-    uint32_t rejected_value;
-    uint32_t ignored_unmapped; /* accepted write frames with bytes for addresses the Mini lacks */
-} xgo_regs_stats_t;
-
-typedef struct xgo_regs_s {
-    uint8_t mem[XGO_REG_COUNT];      /* flat image; unmapped addresses stay 0 */
-    uint8_t index[XGO_REG_COUNT];    /* descriptor index per address, 0xFF = unmapped */
-    uint8_t written[XGO_REG_COUNT / 8]; /* bit per address: written since last taken */
-    char firmware[XGO_FIRMWARE_LEN]; /* NUL padded ASCII */
-    int32_t attitude_mdeg[3];        /* roll, pitch, yaw in millidegrees */
-    int16_t accel[3];                /* IMU block: acceleration, 16384 = 1 g */
-    int16_t gyro[3];                 /* IMU block: angular rate, 16.4 = 1 deg/s */
-    uint8_t turn_to[2];              /* last heading command at 0x3F, int16 BE */
-    xgo_regs_stats_t stats;
-} xgo_regs_t;
-
 /* The descriptor table and lookups. */
 size_t xgo_reg_table_size(void);
 const xgo_reg_desc_t *xgo_reg_table_entry(size_t i);
@@ -216,39 +202,56 @@ const xgo_reg_desc_t *xgo_reg_find(uint8_t addr); /* NULL when the Mini lacks ad
 const char *xgo_reg_name(uint8_t addr);
 int xgo_reg_value_valid(const xgo_reg_desc_t *d, uint8_t value);
 
-/* firmware: up to 10 ASCII chars; version: 0x00 Mini, 0x01 Lite. */
-void xgo_regs_init(xgo_regs_t *r, const char *firmware, uint8_t version);
+/* ------------------------------------------------------------ values
+ * What some registers' values mean: the one definition of each set, used by
+ * the board, the register file's validation and the host's tools. */
 
-/* Restore every writable, volatile register to its initial value (action 255). */
-void xgo_regs_restore_initial(xgo_regs_t *r);
+/* Register 0x00 (mode, read-only). */
+typedef enum xgo_mode_e {
+    XGO_MODE_WHOLE_UNIT = 0x00, /* gait, body pose, periodic motions */
+    XGO_MODE_LEG = 0x01,        /* feet follow 0x40..0x4B */
+    XGO_MODE_SERVO = 0x02,      /* joints follow 0x50..0x5B at the speed of 0x5C */
+    XGO_MODE_DEBUG = 0x03,      /* after a write to 0x20: joints hold, some may be limp */
+    XGO_MODE_ACTION = 0x04,     /* a preset action (0x3E) is running */
+    XGO_MODE_CALIBRATION = 0x05 /* 0x04 = 1: all joints limp, 0x21 records zeros */
+} xgo_mode_t;
 
-/* Host write of n bytes at addr, validated whole: returns XGO_DROP_NONE and
- * applies it, or returns the reason and changes nothing (counted). */
-xgo_drop_reason_t xgo_regs_write(xgo_regs_t *r, uint8_t addr, const uint8_t *data, size_t n);
+/* Register 0x3E (action): 0 stops; 1..19 are the spec's list; 20..24 are
+ * our own motions, named after the XGO family's action lists (the Mini's
+ * protocol document has no names for them; docs/actions.md); 255 is the
+ * reset (1 s in the stance). Valid values: 0..XGO_ACTION_LAST and
+ * XGO_ACTION_RESET. */
+#define XGO_ACTION_NONE 0u
+#define XGO_ACTION_LIE_DOWN 1u
+#define XGO_ACTION_STAND_UP 2u
+#define XGO_ACTION_CREEP 3u
+#define XGO_ACTION_CIRCLE 4u
+#define XGO_ACTION_STEP 5u
+#define XGO_ACTION_SQUAT 6u
+#define XGO_ACTION_ROLL 7u
+#define XGO_ACTION_PITCH 8u
+#define XGO_ACTION_YAW 9u
+#define XGO_ACTION_THREE_AXIS 10u
+#define XGO_ACTION_PEE 11u
+#define XGO_ACTION_SIT 12u
+#define XGO_ACTION_BECKON 13u
+#define XGO_ACTION_STRETCH 14u
+#define XGO_ACTION_WAVE 15u
+#define XGO_ACTION_SWAY 16u
+#define XGO_ACTION_BEG 17u
+#define XGO_ACTION_SEARCH 18u
+#define XGO_ACTION_SHAKE_HANDS 19u
+#define XGO_ACTION_CHICKEN_HEAD 20u
+#define XGO_ACTION_PUSH_UP 21u
+#define XGO_ACTION_LOOK_AROUND 22u
+#define XGO_ACTION_DANCE 23u
+#define XGO_ACTION_NAUGHTY 24u
+#define XGO_ACTION_LAST 24u /* highest preset id */
+#define XGO_ACTION_RESET 255u
 
-/* Host read of n bytes at addr into out (computed views applied). Returns
- * XGO_DROP_NONE, or XGO_DROP_BAD_RANGE for n == 0, n > 247 or addr + n > 256. */
-xgo_drop_reason_t xgo_regs_read(const xgo_regs_t *r, uint8_t addr, size_t n, uint8_t *out);
-
-/* Board-side access: no validation, no counting. */
-uint8_t xgo_regs_get(const xgo_regs_t *r, uint8_t addr);
-void xgo_regs_set(xgo_regs_t *r, uint8_t addr, uint8_t value);
-
-/* True (once) if the host wrote addr since the last call for it. */
-int xgo_regs_take_written(xgo_regs_t *r, uint8_t addr);
-/* The same without consuming the flag. */
-int xgo_regs_was_written(const xgo_regs_t *r, uint8_t addr);
-
-/* Board-side updates of computed registers. */
-void xgo_regs_set_attitude(xgo_regs_t *r, int32_t roll_mdeg, int32_t pitch_mdeg, int32_t yaw_mdeg);
-void xgo_regs_set_diag(xgo_regs_t *r, const uint32_t counters[XGO_DIAG_COUNT]);
-/* The IMU block's acceleration (16384 LSB = 1 g) and angular rate (16.4 LSB
- * = 1 deg/s), body axes x forward, y left, z up (docs/motion.md). */
-void xgo_regs_set_inertial(xgo_regs_t *r, const int16_t accel[3], const int16_t gyro[3]);
-
-/* The heading of the last turn command written to 0x3F, in degrees. */
-int16_t xgo_regs_turn_to_deg(const xgo_regs_t *r);
-
+/* English name of an action ("lie down", ..., "reset"); NULL for 0 and for
+ * an id without a table. */
+const char *xgo_action_name(uint8_t id);
 
 /* Register 0x20 (unload): 0x00 load all, 0x01 unload all, 0x11..0x14 unload
  * leg 1..4, 0x21..0x24 load leg 1..4 - the one definition of that set. */

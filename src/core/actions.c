@@ -23,7 +23,7 @@
  * Arithmetic: 32-bit tangents, Q16 curve parameter, 64-bit products; no
  * float, one 32-bit division per tangent and one per tick.
  */
-#include "xgo/actions.h"
+#include "actions.h"
 
 #include <stddef.h>
 

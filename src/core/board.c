@@ -6,6 +6,9 @@
 #include <string.h>
 
 #include "codec.h"
+#include "motion.h"
+#include "regfile.h"
+#include "xgo/emulator.h"
 
 /* Firmware strings: the first character selects the vendor library's
  * parameter set ('M' Mini, 'L' Lite); the rest marks an emulator. */
@@ -369,6 +372,25 @@ uint8_t xgo_board_battery_pct(const xgo_board_t *b)
 void xgo_board_world_pose(const xgo_board_t *b, xgo_world_pose_t *out)
 {
     xgo_odometry_pose(&b->motion.odom, out);
+}
+
+void xgo_board_gait(const xgo_board_t *b, xgo_gait_status_t *out)
+{
+    const xgo_gait_t *g = &b->motion.gait;
+    unsigned leg;
+    out->contact = 0;
+    for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
+        out->feet_um[leg] = g->foot_um[leg];
+        out->contact |= (uint8_t)((g->contact[leg] != 0) << leg);
+    }
+    out->walking = (uint8_t)!xgo_gait_is_standing(g);
+    out->type = g->type;
+    out->phase = g->phase;
+}
+
+size_t xgo_board_rx_pending(const xgo_board_t *b)
+{
+    return xgo_parser_pending(&b->parser);
 }
 
 void xgo_board_get_nv(const xgo_board_t *b, xgo_board_nv_t *nv)

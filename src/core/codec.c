@@ -4,7 +4,7 @@
 #include "codec.h"
 
 #include "wide.h" /* XGO_CORE_NARROW_CPU */
-#include "xgo/fixed.h"
+#include "fixed.h"
 #include "xgo/regs.h"
 
 /* ------------------------------------------------------------ range map, joints, feet, body */

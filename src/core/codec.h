@@ -21,7 +21,7 @@
 
 #include <stdint.h>
 
-#include "xgo/kinematics.h" /* xgo_vec3_t, xgo_body_pose_t */
+#include "kinematics.h" /* xgo_vec3_t, xgo_body_pose_t */
 #include "xgo/profile.h"
 
 #ifdef __cplusplus

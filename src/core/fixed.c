@@ -5,7 +5,7 @@
  * generator is in docs/fixed-point.md) and are checked against libm by
  * test/test_fixed.c through the functions that use them.
  */
-#include "xgo/fixed.h"
+#include "fixed.h"
 
 #include "wide.h"
 

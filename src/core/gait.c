@@ -37,7 +37,7 @@
  */
 #include "gait_internal.h"
 
-#include "xgo/fixed.h"
+#include "fixed.h"
 
 /* ------------------------------------------------------------ tables */
 

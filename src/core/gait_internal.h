@@ -10,7 +10,7 @@
 #include <stdint.h>
 
 #include "xgo/config.h" /* XGO_TICK_HZ */
-#include "xgo/gait.h"
+#include "gait.h"
 
 #define TICKS_PER_S XGO_TICK_HZ
 

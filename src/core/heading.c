@@ -1,9 +1,9 @@
 /*
  * Turn in place to a heading (see xgo/heading.h).
  */
-#include "xgo/heading.h"
+#include "heading.h"
 
-#include "xgo/fixed.h"
+#include "fixed.h"
 
 /* Wrap an angle difference (|a| < 2 turns) into [-180000, 180000). */
 static int32_t wrap_mdeg(int32_t a)

@@ -1,7 +1,7 @@
 /*
  * Accelerometer and gyroscope model (see xgo/inertial.h).
  */
-#include "xgo/inertial.h"
+#include "inertial.h"
 
 #include <string.h>
 

@@ -15,7 +15,7 @@
  *   back to the leg frame: w + d = d cos phi + h sin phi,
  *                          z     = -d sin phi + h cos phi.
  */
-#include "xgo/kinematics.h"
+#include "kinematics.h"
 
 #include "wide.h" /* 32 x 32 -> 64 products without a libgcc call on a Cortex-M0 */
 

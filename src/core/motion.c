@@ -2,7 +2,7 @@
  * The motion core: modes, register decoding, body pose, and the hand-off to
  * gait, actions, kinematics, servos and sensors.
  */
-#include "xgo/motion.h"
+#include "motion.h"
 
 #include <string.h>
 

@@ -2,7 +2,7 @@
  * Leg odometry: the body's motion on the floor from its planted feet
  * (see xgo/odometry.h for the model and the frame).
  */
-#include "xgo/odometry.h"
+#include "odometry.h"
 
 #include <string.h>
 

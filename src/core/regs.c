@@ -1,12 +1,14 @@
 /*
- * The register file: descriptor table, whole-frame validation, computed views.
+ * The register map (xgo/regs.h: descriptor table, lookups, value sets) and
+ * the register file built from it (regfile.h: whole-frame validation,
+ * computed views).
  */
 #include "xgo/regs.h"
 
 #include <string.h>
 
 #include "codec.h"
-#include "xgo/actions.h" /* XGO_ACTION_LAST, XGO_ACTION_RESET */
+#include "regfile.h"
 
 #define UNMAPPED 0xFFu
 

@@ -1,7 +1,7 @@
 /*
  * IMU and battery models.
  */
-#include "xgo/sensors.h"
+#include "sensors.h"
 
 #include <string.h>
 

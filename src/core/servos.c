@@ -1,7 +1,7 @@
 /*
  * Emulated servos: rate-limited tracking of targets, limp joints, zero offsets.
  */
-#include "xgo/servos.h"
+#include "servos.h"
 
 #include <string.h>
 

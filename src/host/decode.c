@@ -4,7 +4,6 @@
 
 #include <stdio.h>
 
-#include "xgo/actions.h"
 #include "xgo/regs.h"
 
 /* Centred registers: 0x00 full reverse .. 0xFF full forward. 0x7F and 0x80

@@ -21,6 +21,7 @@
 #include "trace.h"
 #include "view_server.h"
 #include "xgo/board.h"
+#include "xgo/emulator.h"
 
 #define XGO_EXIT_OK 0
 #define XGO_EXIT_RUNTIME 1

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "json_in.h"
+#include "xgo/emulator.h"
 
 /* Same bound as --ground-tilt: steeper is no ground a dog stands on. */
 #define XGO_HOST_VIEW_MAX_TILT_MDEG 45000

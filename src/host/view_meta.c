@@ -8,7 +8,6 @@
 
 #include "decode.h"
 #include "view_state.h"
-#include "xgo/actions.h"
 
 static void xgo_host_view_meta_mm(xgo_host_json_t *w, const char *key, int32_t um)
 {

@@ -6,7 +6,7 @@
  */
 #include "view_state.h"
 
-#include "xgo/actions.h"
+#include "xgo/emulator.h"
 
 /* Names of the mode register's values (xgo_mode_t). */
 const char *xgo_host_view_mode_name(uint8_t mode)

@@ -29,7 +29,7 @@ case "$target" in
   *) echo "XGO_MCU_TARGET must be m0 or m3" >&2; exit 2 ;;
 esac
 armflags=("${cpu[@]}" "$opt" "${defs[@]}" -g -ffreestanding -ffunction-sections -fdata-sections
-  -Iinclude -Itest/support -I"$mcu")
+  -Iinclude -Isrc/core -Itest/support -I"$mcu")
 
 echo "== build: bare-metal image (arm-none-eabi-gcc ${cpu[*]} $opt -ffreestanding -nostdlib)"
 objs=()
@@ -63,7 +63,7 @@ link "$out/mcu_fault.elf" "$out/obj/mcu_selftest_fault.o"
 
 echo "== build: host variant (gcc -O2)"
 host="$out/mcu_selftest_host"
-gcc "${warn[@]}" -O2 -Iinclude -Itest/support -I"$mcu" "$mcu/mcu_selftest.c" "$mcu/host_port.c" \
+gcc "${warn[@]}" -O2 -Iinclude -Isrc/core -Itest/support -I"$mcu" "$mcu/mcu_selftest.c" "$mcu/host_port.c" \
   test/support/board_io.c src/core/*.c -o "$host"
 
 echo "== sizes"

@@ -1,5 +1,5 @@
 /*
- * xgo/kinematics.h - leg inverse/forward kinematics, body pose to foot
+ * kinematics.h - leg inverse/forward kinematics, body pose to foot
  * positions, and the byte encodings of the foot and servo registers; all in
  * integer arithmetic (xgo/fixed.h).
  *
@@ -36,7 +36,7 @@
 
 #include <stdint.h>
 
-#include "xgo/fixed.h"
+#include "fixed.h"
 #include "xgo/profile.h"
 #include "xgo/types.h" /* xgo_vec3_t, xgo_body_pose_t */
 

@@ -1,5 +1,5 @@
 /*
- * xgo/sensors.h - the board's emulated IMU and battery.
+ * sensors.h - the board's emulated IMU and battery.
  *
  * IMU: roll and pitch are the body's attitude relative to the ground plus the
  * ground's own tilt (an emulator input: a ramp under the robot), composed by
@@ -19,7 +19,8 @@
 
 #include <stdint.h>
 
-#include "xgo/config.h" /* XGO_TICK_HZ */
+#include "xgo/board_state.h" /* xgo_battery_t, xgo_imu_t */
+#include "xgo/config.h"      /* XGO_TICK_HZ */
 
 #ifdef __cplusplus
 extern "C" {
@@ -32,24 +33,9 @@ extern "C" {
 #define XGO_BATTERY_IDLE_UPCT_PER_TICK XGO_BATTERY_UPCT_PER_TICK_(120u)
 #define XGO_BATTERY_WALK_UPCT_PER_TICK XGO_BATTERY_UPCT_PER_TICK_(60u)
 
-typedef struct xgo_battery_s {
-    uint32_t charge_upct; /* 0 .. 100,000,000 */
-} xgo_battery_t;
-
 void xgo_battery_init(xgo_battery_t *b, uint8_t percent);
 void xgo_battery_tick(xgo_battery_t *b, int walking);
 uint8_t xgo_battery_percent(const xgo_battery_t *b);
-
-typedef struct xgo_imu_s {
-    int32_t ground_roll_mdeg;  /* tilt of the ground under the robot */
-    int32_t ground_pitch_mdeg;
-    int32_t yaw_acc;           /* integrated yaw, mdeg * XGO_TICK_HZ, wrapped */
-    int32_t push_q10[2];       /* a shove's tilt (roll, pitch), mdeg * 1024 */
-    int32_t push_rate_q10[2];  /* its rate per tick, same unit */
-    int32_t roll_mdeg;         /* outputs, updated by xgo_imu_tick */
-    int32_t pitch_mdeg;
-    int32_t yaw_mdeg;
-} xgo_imu_t;
 
 void xgo_imu_init(xgo_imu_t *imu);
 void xgo_imu_set_ground_tilt(xgo_imu_t *imu, int32_t roll_mdeg, int32_t pitch_mdeg);

@@ -1,5 +1,5 @@
 /*
- * xgo/gait.h - the gait generator: a body velocity command in physical units
+ * gait.h - the gait generator: a body velocity command in physical units
  * in, four foot positions per control tick out.
  *
  * Data flow (CHAMP's split): command -> velocity ramp -> phase generator
@@ -54,7 +54,8 @@
 #include <stdint.h>
 
 #include "xgo/config.h" /* XGO_TICK_HZ */
-#include "xgo/types.h"  /* xgo_vec3_t */
+#include "xgo/board_state.h" /* xgo_gait_t */
+#include "xgo/types.h"       /* xgo_vec3_t */
 
 /* Legs 1..4 = indices 0..3: XGO_LEG_LF, _RF, _RH, _LH and XGO_LEG_COUNT, from
  * the one place legs are numbered (only the enum is used here). */
@@ -127,52 +128,6 @@ typedef struct xgo_gait_command_s {
     uint8_t type;         /* xgo_gait_type_t; out of range = trot */
     uint8_t pace;         /* xgo_pace_t; out of range = normal */
 } xgo_gait_command_t;
-
-typedef struct xgo_gait_s {
-    /* ---- outputs, valid after xgo_gait_init and after every tick ---- */
-    xgo_vec3_t foot_um[XGO_LEG_COUNT]; /* feet relative to the body, z up */
-    uint8_t contact[XGO_LEG_COUNT];    /* 1 = stance (on the ground) */
-    int32_t vx_um_s;                   /* velocity produced this tick */
-    int32_t vy_um_s;
-    int32_t vyaw_mdeg_s;
-
-    /* ---- configuration (from xgo_gait_init) ---- */
-    int32_t stance_um[XGO_LEG_COUNT][2]; /* nominal feet x, y */
-
-    /* ---- state ---- */
-    int32_t pos_q8[XGO_LEG_COUNT][2];  /* feet x, y in 1/256 um */
-    int32_t lift_q8[XGO_LEG_COUNT][2]; /* where the current swing started */
-    int32_t swing_height_um[XGO_LEG_COUNT]; /* latched at lift-off */
-    int32_t reach_y_um[XGO_LEG_COUNT]; /* y reach of a planted foot: set at
-                                          touchdown, only grows in stance */
-    uint8_t swinging[XGO_LEG_COUNT];
-    uint32_t phase;      /* master phase, 2^32 = one cycle */
-    uint32_t rate;       /* phase advance of the last tick */
-    uint32_t rate_base;  /* nominal rate, slewed after pace/gait changes */
-    uint8_t type;        /* gait table in use */
-    uint8_t standing;    /* 1 = stopped, four feet at stance */
-    uint8_t brake;       /* slowing down until a pending gait switch fits */
-    int32_t v_ramp[3];   /* produced vx, vy (um/s), vyaw (mdeg/s) */
-
-    /* ---- caches (pure functions of the keys; save work in steady state) ---- */
-    int32_t cache_cmd[3];      /* command the speed limit was computed for */
-    int32_t cache_lambda_q16;  /* its scale factor (65536 = not limited) */
-    int32_t cache_v[3];        /* velocity the fitted cadence is for */
-    uint32_t cache_rate_base;
-    uint32_t cache_rate_fit;
-    uint8_t cache_cmd_type;
-    uint8_t cache_v_type;
-
-    /* ---- diagnostics ---- */
-    uint32_t ticks;           /* ticks since init */
-    uint32_t limited_ticks;   /* ticks with the speed limited (cadence cap) */
-    uint32_t boosted_ticks;   /* ticks with the cadence raised by a transient */
-    uint32_t governed_ticks;  /* ticks where planted feet held back the ramp */
-    uint32_t outside_ticks;   /* ticks where a planted foot's predicted end was
-                                 (by rounding) just outside its reach */
-    uint32_t clamped_ticks;   /* ticks where a stance foot hit the reach box */
-    uint32_t switches;        /* gait table switches performed */
-} xgo_gait_t;
 
 /* Standing at the stance: stance_um[leg] = nominal foot (x, y, z) in the
  * machine frame relative to the body; z is ignored (the ground is z = 0),

@@ -1,5 +1,5 @@
 /*
- * xgo/fixed.h - integer-only math for the motion core: Q formats, saturating
+ * fixed.h - integer-only math for the motion core: Q formats, saturating
  * arithmetic, square root and trigonometry.
  *
  * The board's motion core must run on an MCU without an FPU (and, on a

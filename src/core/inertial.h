@@ -1,5 +1,5 @@
 /*
- * xgo/inertial.h - the accelerometer and gyroscope behind the IMU block
+ * inertial.h - the accelerometer and gyroscope behind the IMU block
  * (register 0x65): what an MPU-6050-class sensor fixed to the body would read.
  *
  * Axes: the body's, x forward, y left, z up (docs/motion.md).
@@ -29,9 +29,10 @@
 
 #include <stdint.h>
 
-#include "xgo/fixed.h"
-#include "xgo/kinematics.h" /* xgo_body_pose_t */
-#include "xgo/odometry.h"
+#include "fixed.h"
+#include "xgo/board_state.h" /* xgo_inertial_t */
+#include "kinematics.h" /* xgo_body_pose_t */
+#include "odometry.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -41,16 +42,6 @@ extern "C" {
 #define XGO_GYRO_LSB_PER_10_DEG_S 164 /* 16.4 LSB per deg/s */
 #define XGO_GRAVITY_UM_S2 9806650
 #define XGO_INERTIAL_FILTER_SHIFT 2   /* low-pass: 1/4 of the gap per tick */
-
-typedef struct xgo_inertial_s {
-    int64_t pos_q8[2][3];    /* body centre, world, 1/256 um: last tick, the one before */
-    int32_t att_mdeg[3];     /* last tick's roll, pitch, yaw */
-    int32_t accel_q8[3];     /* filter states, LSB * 256 */
-    int32_t gyro_q8[3];
-    uint8_t history;         /* ticks seen, up to 2 */
-    int16_t accel[3];        /* outputs, LSB */
-    int16_t gyro[3];
-} xgo_inertial_t;
 
 /* A level body at rest: accel (0, 0, 16384), gyro 0. */
 void xgo_inertial_init(xgo_inertial_t *s);

@@ -1,5 +1,5 @@
 /*
- * xgo/odometry.h - where the robot is on the floor: position and heading
+ * odometry.h - where the robot is on the floor: position and heading
  * integrated from what the legs do.
  *
  * Each control tick the caller hands in the feet positions it has measured
@@ -27,25 +27,14 @@
 
 #include <stdint.h>
 
-#include "xgo/fixed.h"
+#include "fixed.h"
+#include "xgo/board_state.h" /* xgo_odometry_t */
 #include "xgo/profile.h"
 #include "xgo/types.h" /* xgo_vec3_t, xgo_world_pose_t */
 
 #ifdef __cplusplus
 extern "C" {
 #endif
-
-typedef struct xgo_odometry_s {
-    int64_t x_q8;                           /* world position, 1/256 um */
-    int64_t y_q8;
-    xgo_bam_t yaw;                          /* heading, binary angle */
-    xgo_vec3_t prev_um[XGO_LEG_COUNT];      /* last tick's feet (machine frame; z unused) */
-    uint8_t prev_contact;                   /* bit leg: planted last tick */
-    uint8_t have_prev;                      /* prev_* are valid */
-    int32_t last_d_q8[2];                   /* last tick's translation (body frame) */
-    int32_t last_dyaw;                      /* last tick's rotation (signed BAM) */
-    uint32_t extrapolated_ticks;            /* ticks with < 2 common planted feet */
-} xgo_odometry_t;
 
 /* At the origin, heading 0, no previous feet. */
 void xgo_odometry_init(xgo_odometry_t *o);

@@ -1,5 +1,5 @@
 /*
- * xgo/heading.h - turn in place to a heading: the controller behind register
+ * heading.h - turn in place to a heading: the controller behind register
  * 0x3F (the vendor library's move_to) and its origin, register 0x06.
  *
  * A heading command is relative to the origin: the yaw the IMU read when
@@ -23,6 +23,8 @@
 
 #include <stdint.h>
 
+#include "xgo/board_state.h" /* xgo_heading_t */
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -38,12 +40,6 @@ typedef enum xgo_heading_state_e {
     XGO_HEADING_TURNING = 1, /* commanding a rate toward the target */
     XGO_HEADING_SETTLING = 2 /* commanding zero, waiting for the gait to stop */
 } xgo_heading_state_t;
-
-typedef struct xgo_heading_s {
-    int32_t origin_mdeg; /* the IMU yaw that heading 0 means */
-    int32_t target_mdeg; /* absolute IMU yaw to reach, [-180000, 180000) */
-    uint8_t state;       /* xgo_heading_state_t */
-} xgo_heading_t;
 
 /* Idle, origin 0. */
 void xgo_heading_init(xgo_heading_t *h);

@@ -1,5 +1,5 @@
 /*
- * xgo/servos.h - the twelve emulated serial-bus servos.
+ * servos.h - the twelve emulated serial-bus servos.
  *
  * Each joint moves from its current angle toward its target by at most a
  * given step per control tick (the servo's speed), never past the profile's
@@ -19,21 +19,13 @@
 
 #include <stdint.h>
 
+#include "xgo/board_state.h" /* xgo_servos_t */
 #include "xgo/profile.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
-#define XGO_SERVO_COUNT (XGO_LEG_COUNT * XGO_JOINT_COUNT)
-
-typedef struct xgo_servos_s {
-    int32_t angle_mdeg[XGO_SERVO_COUNT];  /* where each joint is now */
-    int32_t target_mdeg[XGO_SERVO_COUNT]; /* where it is going (limits applied) */
-    int32_t zero_offset_mdeg[XGO_SERVO_COUNT];
-    uint16_t unloaded;                    /* bit i: joint i is limp */
-    const xgo_profile_t *profile;
-} xgo_servos_t;
 
 /* All joints loaded at `initial` (clamped to the limits), no offsets. */
 void xgo_servos_init(xgo_servos_t *s, const xgo_profile_t *profile,

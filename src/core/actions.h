@@ -1,5 +1,5 @@
 /*
- * xgo/actions.h - the preset actions of register 0x3E (lie down, sit, wave,
+ * actions.h - the preset actions of register 0x3E (lie down, sit, wave,
  * shake hands, ...) as keyframe tables played back in fixed point.
  *
  * An action is a const table of keyframes (docs/actions.md has the format).
@@ -34,51 +34,13 @@
 
 #include <stdint.h>
 
-#include "xgo/types.h" /* xgo_pose_t: an action's pose is an offset from the standing pose */
+#include "xgo/board_state.h" /* xgo_action_player_t */
+#include "xgo/regs.h"        /* the action ids XGO_ACTION_*, xgo_action_name */
+#include "xgo/types.h"       /* xgo_pose_t: an action's pose is an offset from the standing pose */
 
 #ifdef __cplusplus
 extern "C" {
 #endif
-
-/* Action ids (register 0x3E). 1..19 are the spec's list; 20..24 are our
- * own motions, named after the XGO family's action lists (the Mini's
- * protocol document has no names for them; docs/actions.md); 255 is the
- * reset (1 s in the stance). */
-#define XGO_ACTION_NONE 0u
-#define XGO_ACTION_LIE_DOWN 1u
-#define XGO_ACTION_STAND_UP 2u
-#define XGO_ACTION_CREEP 3u
-#define XGO_ACTION_CIRCLE 4u
-#define XGO_ACTION_STEP 5u
-#define XGO_ACTION_SQUAT 6u
-#define XGO_ACTION_ROLL 7u
-#define XGO_ACTION_PITCH 8u
-#define XGO_ACTION_YAW 9u
-#define XGO_ACTION_THREE_AXIS 10u
-#define XGO_ACTION_PEE 11u
-#define XGO_ACTION_SIT 12u
-#define XGO_ACTION_BECKON 13u
-#define XGO_ACTION_STRETCH 14u
-#define XGO_ACTION_WAVE 15u
-#define XGO_ACTION_SWAY 16u
-#define XGO_ACTION_BEG 17u
-#define XGO_ACTION_SEARCH 18u
-#define XGO_ACTION_SHAKE_HANDS 19u
-#define XGO_ACTION_CHICKEN_HEAD 20u
-#define XGO_ACTION_PUSH_UP 21u
-#define XGO_ACTION_LOOK_AROUND 22u
-#define XGO_ACTION_DANCE 23u
-#define XGO_ACTION_NAUGHTY 24u
-#define XGO_ACTION_LAST 24u  /* highest preset id */
-#define XGO_ACTION_RESET 255u
-
-/* Player state: which action, and where in it. Small and plain: copy it,
- * zero it, keep one per board. Read it only through the functions below. */
-typedef struct xgo_action_player_s {
-    uint8_t id;    /* running action, 0 = none */
-    uint16_t seg;  /* segment (keyframe interval) being played */
-    uint16_t tick; /* ticks into that segment */
-} xgo_action_player_t;
 
 /* Idle player. */
 void xgo_action_init(xgo_action_player_t *p);
@@ -104,9 +66,6 @@ uint8_t xgo_action_running(const xgo_action_player_t *p);
 /* Length of action id in ticks (vendor seconds x XGO_TICK_HZ); 0 for an id
  * without a table. */
 uint32_t xgo_action_duration_ticks(uint8_t id);
-
-/* English name ("lie down", ..., "reset"); NULL for an id without a table. */
-const char *xgo_action_name(uint8_t id);
 
 /* Perform mode (register 0x03 = 1): the action to play after id. The cycle
  * is 3, 4, ..., 24, 3, ...: every preset except the two posture changes

@@ -1,0 +1,202 @@
+/*
+ * xgo/board_state.h - the parts of the board's state, as complete types.
+ *
+ * Why this header exists: the caller owns the board (xgo_board_t in
+ * xgo/board.h: static, on the stack, inside its own struct; no heap), so its
+ * definition must be complete where board.h is included, and so must the
+ * types of its parts: the register file and the motion core with the gait,
+ * the action player, the servos, the sensors and the odometry. Here they are,
+ * and nothing else: no functions, no constants beyond array sizes.
+ *
+ * Everything in this file is PRIVATE. Read the board through board.h (its
+ * observers cover what a tool or a test needs); fields change without
+ * notice. The functions that work on these types are declared in the
+ * core's private headers in src/core, one per module.
+ */
+#ifndef XGO_BOARD_STATE_H
+#define XGO_BOARD_STATE_H
+
+#include <stdint.h>
+
+#include "xgo/profile.h" /* XGO_LEG_COUNT, XGO_SERVO_COUNT, xgo_profile_t */
+#include "xgo/regs.h"    /* XGO_REG_COUNT, XGO_FIRMWARE_LEN */
+#include "xgo/types.h"   /* xgo_vec3_t, xgo_body_pose_t */
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* The register file (src/core/regfile.h): the 256-byte image and its
+ * computed views, the write flags the motion core takes, the counters. */
+typedef struct xgo_regs_stats_s {
+    uint32_t writes_ok;
+    uint32_t rejected_read_only;
+    uint32_t rejected_value;
+    uint32_t ignored_unmapped; /* accepted write frames with bytes for addresses the Mini lacks */
+} xgo_regs_stats_t;
+
+typedef struct xgo_regs_s {
+    uint8_t mem[XGO_REG_COUNT];      /* flat image; unmapped addresses stay 0 */
+    uint8_t index[XGO_REG_COUNT];    /* descriptor index per address, 0xFF = unmapped */
+    uint8_t written[XGO_REG_COUNT / 8]; /* bit per address: written since last taken */
+    char firmware[XGO_FIRMWARE_LEN]; /* NUL padded ASCII */
+    int32_t attitude_mdeg[3];        /* roll, pitch, yaw in millidegrees */
+    int16_t accel[3];                /* IMU block: acceleration, 16384 = 1 g */
+    int16_t gyro[3];                 /* IMU block: angular rate, 16.4 = 1 deg/s */
+    uint8_t turn_to[2];              /* last heading command at 0x3F, int16 BE */
+    xgo_regs_stats_t stats;
+} xgo_regs_t;
+
+/* The gait generator (src/core/gait.h). */
+typedef struct xgo_gait_s {
+    /* ---- outputs, valid after xgo_gait_init and after every tick ---- */
+    xgo_vec3_t foot_um[XGO_LEG_COUNT]; /* feet relative to the body, z up */
+    uint8_t contact[XGO_LEG_COUNT];    /* 1 = stance (on the ground) */
+    int32_t vx_um_s;                   /* velocity produced this tick */
+    int32_t vy_um_s;
+    int32_t vyaw_mdeg_s;
+
+    /* ---- configuration (from xgo_gait_init) ---- */
+    int32_t stance_um[XGO_LEG_COUNT][2]; /* nominal feet x, y */
+
+    /* ---- state ---- */
+    int32_t pos_q8[XGO_LEG_COUNT][2];  /* feet x, y in 1/256 um */
+    int32_t lift_q8[XGO_LEG_COUNT][2]; /* where the current swing started */
+    int32_t swing_height_um[XGO_LEG_COUNT]; /* latched at lift-off */
+    int32_t reach_y_um[XGO_LEG_COUNT]; /* y reach of a planted foot: set at
+                                          touchdown, only grows in stance */
+    uint8_t swinging[XGO_LEG_COUNT];
+    uint32_t phase;      /* master phase, 2^32 = one cycle */
+    uint32_t rate;       /* phase advance of the last tick */
+    uint32_t rate_base;  /* nominal rate, slewed after pace/gait changes */
+    uint8_t type;        /* gait table in use */
+    uint8_t standing;    /* 1 = stopped, four feet at stance */
+    uint8_t brake;       /* slowing down until a pending gait switch fits */
+    int32_t v_ramp[3];   /* produced vx, vy (um/s), vyaw (mdeg/s) */
+
+    /* ---- caches (pure functions of the keys; save work in steady state) ---- */
+    int32_t cache_cmd[3];      /* command the speed limit was computed for */
+    int32_t cache_lambda_q16;  /* its scale factor (65536 = not limited) */
+    int32_t cache_v[3];        /* velocity the fitted cadence is for */
+    uint32_t cache_rate_base;
+    uint32_t cache_rate_fit;
+    uint8_t cache_cmd_type;
+    uint8_t cache_v_type;
+
+    /* ---- diagnostics ---- */
+    uint32_t ticks;           /* ticks since init */
+    uint32_t limited_ticks;   /* ticks with the speed limited (cadence cap) */
+    uint32_t boosted_ticks;   /* ticks with the cadence raised by a transient */
+    uint32_t governed_ticks;  /* ticks where planted feet held back the ramp */
+    uint32_t outside_ticks;   /* ticks where a planted foot's predicted end was
+                                 (by rounding) just outside its reach */
+    uint32_t clamped_ticks;   /* ticks where a stance foot hit the reach box */
+    uint32_t switches;        /* gait table switches performed */
+} xgo_gait_t;
+
+/* The preset-action player (src/core/actions.h): which action, and where
+ * in it. */
+typedef struct xgo_action_player_s {
+    uint8_t id;    /* running action, 0 = none */
+    uint16_t seg;  /* segment (keyframe interval) being played */
+    uint16_t tick; /* ticks into that segment */
+} xgo_action_player_t;
+
+/* The twelve emulated servos (src/core/servos.h), register order. */
+typedef struct xgo_servos_s {
+    int32_t angle_mdeg[XGO_SERVO_COUNT];  /* where each joint is now */
+    int32_t target_mdeg[XGO_SERVO_COUNT]; /* where it is going (limits applied) */
+    int32_t zero_offset_mdeg[XGO_SERVO_COUNT];
+    uint16_t unloaded;                    /* bit i: joint i is limp */
+    const xgo_profile_t *profile;
+} xgo_servos_t;
+
+/* Battery and IMU models (src/core/sensors.h). */
+typedef struct xgo_battery_s {
+    uint32_t charge_upct; /* 0 .. 100,000,000 */
+} xgo_battery_t;
+
+typedef struct xgo_imu_s {
+    int32_t ground_roll_mdeg;  /* tilt of the ground under the robot */
+    int32_t ground_pitch_mdeg;
+    int32_t yaw_acc;           /* integrated yaw, mdeg * XGO_TICK_HZ, wrapped */
+    int32_t push_q10[2];       /* a shove's tilt (roll, pitch), mdeg * 1024 */
+    int32_t push_rate_q10[2];  /* its rate per tick, same unit */
+    int32_t roll_mdeg;         /* outputs, updated by xgo_imu_tick */
+    int32_t pitch_mdeg;
+    int32_t yaw_mdeg;
+} xgo_imu_t;
+
+/* Leg odometry (src/core/odometry.h). */
+typedef struct xgo_odometry_s {
+    int64_t x_q8;                           /* world position, 1/256 um */
+    int64_t y_q8;
+    uint32_t yaw;                           /* heading, binary angle (xgo_bam_t) */
+    xgo_vec3_t prev_um[XGO_LEG_COUNT];      /* last tick's feet (machine frame; z unused) */
+    uint8_t prev_contact;                   /* bit leg: planted last tick */
+    uint8_t have_prev;                      /* prev_* are valid */
+    int32_t last_d_q8[2];                   /* last tick's translation (body frame) */
+    int32_t last_dyaw;                      /* last tick's rotation (signed BAM) */
+    uint32_t extrapolated_ticks;            /* ticks with < 2 common planted feet */
+} xgo_odometry_t;
+
+/* Turn to heading, register 0x3F (src/core/heading.h). */
+typedef struct xgo_heading_s {
+    int32_t origin_mdeg; /* the IMU yaw that heading 0 means */
+    int32_t target_mdeg; /* absolute IMU yaw to reach, [-180000, 180000) */
+    uint8_t state;       /* xgo_heading_state_t */
+} xgo_heading_t;
+
+/* Accelerometer and gyroscope of the IMU block 0x65 (src/core/inertial.h). */
+typedef struct xgo_inertial_s {
+    int64_t pos_q8[2][3];    /* body centre, world, 1/256 um: last tick, the one before */
+    int32_t att_mdeg[3];     /* last tick's roll, pitch, yaw */
+    int32_t accel_q8[3];     /* filter states, LSB * 256 */
+    int32_t gyro_q8[3];
+    uint8_t history;         /* ticks seen, up to 2 */
+    int16_t accel[3];        /* outputs, LSB */
+    int16_t gyro[3];
+} xgo_inertial_t;
+
+/* The motion core (src/core/motion.h): registers in, twelve joints out. */
+typedef struct xgo_motion_s {
+    const xgo_profile_t *profile;
+    uint8_t mode;             /* xgo_mode_t */
+    uint8_t group_mode;       /* the mode the last group write selected */
+    uint8_t perform;          /* 0x03 = 1: cycle actions */
+    uint8_t perform_last;     /* the action perform mode started last */
+    uint8_t calibration;
+    uint8_t action_id;        /* running preset action (incl. 255 reset), 0 none */
+    xgo_gait_t gait;
+    xgo_action_player_t actions;
+    xgo_servos_t servos;
+    xgo_imu_t imu;
+    xgo_battery_t battery;
+    xgo_vec3_t stance_um[XGO_LEG_COUNT];
+    xgo_body_pose_t pose;     /* body pose used this tick (machine frame) */
+    xgo_body_pose_t stand;    /* the standing pose (initial body registers) */
+    int32_t servo_cmd_mdeg[XGO_SERVO_COUNT]; /* servo-mode commands */
+    uint32_t periodic_phase[6]; /* roll, pitch, yaw, x, y, z (xgo_bam_t) */
+    int32_t stab_mdeg[2];     /* self-stabilisation roll, pitch correction */
+    uint32_t nv_changes;      /* counts changes of non-volatile data */
+    uint8_t contact;          /* bit leg: foot on the ground this tick */
+    xgo_vec3_t feet_body_um[XGO_LEG_COUNT]; /* measured: FK of the actual joints,
+                                               body frame (z up) */
+    xgo_odometry_t odom;      /* world pose from the planted feet */
+    xgo_heading_t heading;    /* turn to heading (0x3F) and its origin (0x06) */
+    xgo_inertial_t inertial;  /* accelerometer and gyroscope (0x65) */
+    struct {                  /* last body + leg IK solve (skipped when unchanged) */
+        xgo_body_pose_t pose;
+        xgo_vec3_t feet[XGO_LEG_COUNT];     /* machine frame, as asked */
+        xgo_vec3_t feet_leg[XGO_LEG_COUNT]; /* the same in the leg frames */
+        int32_t q_mdeg[XGO_SERVO_COUNT];
+        uint8_t projected;                  /* bit leg: target was unreachable */
+        uint8_t valid;
+    } ik_cache;
+} xgo_motion_t;
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* XGO_BOARD_STATE_H */

@@ -1,0 +1,58 @@
+/*
+ * motion.h - the motion core: registers in, twelve servo targets out,
+ * once per control tick (private to the core; the board drives it).
+ *
+ * Data flow per tick (docs/motion.md):
+ *   host writes (xgo_regs_take_written) -> mode + commands
+ *   whole-unit: velocity -> gait -> feet; body registers + periodic motions
+ *               + self-stabilisation -> body pose; or a preset action's pose
+ *   leg mode:   foot registers -> feet in the leg frames
+ *   servo mode: servo registers -> joint angles
+ *   -> body IK -> leg IK -> joint targets -> emulated servos (rate limited)
+ *   -> registers: mode 0x00, battery 0x01, joints 0x50..0x5B, action 0x3E,
+ *      attitude 0x62..0x64
+ *
+ * Portable: no OS calls, no heap, no globals, no floating point.
+ */
+#ifndef XGO_MOTION_H
+#define XGO_MOTION_H
+
+#include <stdint.h>
+
+#include "actions.h"
+#include "gait.h"
+#include "heading.h"
+#include "inertial.h"
+#include "kinematics.h"
+#include "odometry.h"
+#include "regfile.h"
+#include "sensors.h"
+#include "servos.h"
+#include "xgo/board_state.h" /* xgo_motion_t */
+#include "xgo/config.h"
+#include "xgo/profile.h"
+#include "xgo/regs.h" /* xgo_mode_t */
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Joint speed outside servo mode: the bound on how far any joint moves in one
+ * tick (600 deg/s; 1200 mdeg at 500 Hz). */
+#define XGO_JOINT_STEP_MAX_MDEG ((int32_t)(600000u / XGO_TICK_HZ))
+
+void xgo_motion_init(xgo_motion_t *m, const xgo_profile_t *profile, uint8_t battery_pct);
+
+/* One control tick: consume host writes in regs, move, publish state to regs. */
+void xgo_motion_tick(xgo_motion_t *m, xgo_regs_t *regs);
+
+/* Write the board's state into the registers (mode, battery, joints, action,
+ * attitude); xgo_motion_tick ends with it, the board calls it at init too so
+ * the joints read where they are from power-up. */
+void xgo_motion_publish(const xgo_motion_t *m, xgo_regs_t *r);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* XGO_MOTION_H */

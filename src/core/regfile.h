@@ -1,0 +1,62 @@
+/*
+ * regfile.h - the register file itself (private to the core; the register
+ * map, its descriptors and the values' meanings are public: xgo/regs.h).
+ * Implemented in regs.c with the table it is built from.
+ *
+ * The file is a flat 256-byte image plus the computed views xgo/regs.h lists;
+ * a host write is validated whole before anything changes and every refusal
+ * is counted (expected input). The board side (motion core) sets and takes
+ * registers without validation.
+ * Portable: no OS calls, no heap, no globals, no floating point.
+ */
+#ifndef XGO_CORE_REGFILE_H
+#define XGO_CORE_REGFILE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "xgo/board_state.h" /* xgo_regs_t */
+#include "xgo/regs.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* firmware: up to 10 ASCII chars; version: 0x00 Mini, 0x01 Lite. */
+void xgo_regs_init(xgo_regs_t *r, const char *firmware, uint8_t version);
+
+/* Restore every writable, volatile register to its initial value (action 255). */
+void xgo_regs_restore_initial(xgo_regs_t *r);
+
+/* Host write of n bytes at addr, validated whole: returns XGO_DROP_NONE and
+ * applies it, or returns the reason and changes nothing (counted). */
+xgo_drop_reason_t xgo_regs_write(xgo_regs_t *r, uint8_t addr, const uint8_t *data, size_t n);
+
+/* Host read of n bytes at addr into out (computed views applied). Returns
+ * XGO_DROP_NONE, or XGO_DROP_BAD_RANGE for n == 0, n > 247 or addr + n > 256. */
+xgo_drop_reason_t xgo_regs_read(const xgo_regs_t *r, uint8_t addr, size_t n, uint8_t *out);
+
+/* Board-side access: no validation, no counting. */
+uint8_t xgo_regs_get(const xgo_regs_t *r, uint8_t addr);
+void xgo_regs_set(xgo_regs_t *r, uint8_t addr, uint8_t value);
+
+/* True (once) if the host wrote addr since the last call for it. */
+int xgo_regs_take_written(xgo_regs_t *r, uint8_t addr);
+/* The same without consuming the flag. */
+int xgo_regs_was_written(const xgo_regs_t *r, uint8_t addr);
+
+/* Board-side updates of computed registers. */
+void xgo_regs_set_attitude(xgo_regs_t *r, int32_t roll_mdeg, int32_t pitch_mdeg, int32_t yaw_mdeg);
+void xgo_regs_set_diag(xgo_regs_t *r, const uint32_t counters[XGO_DIAG_COUNT]);
+/* The IMU block's acceleration (16384 LSB = 1 g) and angular rate (16.4 LSB
+ * = 1 deg/s), body axes x forward, y left, z up (docs/motion.md). */
+void xgo_regs_set_inertial(xgo_regs_t *r, const int16_t accel[3], const int16_t gyro[3]);
+
+/* The heading of the last turn command written to 0x3F, in degrees. */
+int16_t xgo_regs_turn_to_deg(const xgo_regs_t *r);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* XGO_CORE_REGFILE_H */
