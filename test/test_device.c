@@ -9,6 +9,7 @@
  */
 #include <string.h>
 
+#include "servos.h" /* XGO_SERVO_LEG_MASK */
 #include "unity.h"
 #include "xgo/port.h"
 

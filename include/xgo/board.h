@@ -19,8 +19,9 @@
  * frames and parser, xgo/regs.h the register map). xgo/board_state.h only
  * makes xgo_board_t complete so that the caller can own it: its fields are
  * private, read the board through the observers below. Emulator-only inputs
- * (ground tilt, battery, a shove) are in xgo/emulator.h; the core's modules
- * have private headers in src/core.
+ * (ground tilt, battery, a shove) are in xgo/emulator.h, the port boundary
+ * for firmware in xgo/port.h; the core's modules have private headers in
+ * src/core.
  *
  * Return values: a call that can refuse its input returns why
  * (xgo_drop_reason_t; XGO_DROP_NONE, 0, means done); a call whose only

@@ -253,6 +253,11 @@ typedef enum xgo_mode_e {
  * an id without a table. */
 const char *xgo_action_name(uint8_t id);
 
+/* Length of action id in control ticks (the vendor library's wait in
+ * seconds x XGO_TICK_HZ): register 0x3E reads the action that long. 0 for
+ * an id without a table. */
+uint32_t xgo_action_duration_ticks(uint8_t id);
+
 /* Register 0x20 (unload): 0x00 load all, 0x01 unload all, 0x11..0x14 unload
  * leg 1..4, 0x21..0x24 load leg 1..4 - the one definition of that set. */
 typedef struct xgo_unload_s {

@@ -63,10 +63,6 @@ int xgo_action_tick(xgo_action_player_t *p, xgo_pose_t *out);
 /* The running action's id, 0 when none (what register 0x3E reads). */
 uint8_t xgo_action_running(const xgo_action_player_t *p);
 
-/* Length of action id in ticks (vendor seconds x XGO_TICK_HZ); 0 for an id
- * without a table. */
-uint32_t xgo_action_duration_ticks(uint8_t id);
-
 /* Perform mode (register 0x03 = 1): the action to play after id. The cycle
  * is 3, 4, ..., 24, 3, ...: every preset except the two posture changes
  * (1 lie down, 2 stand up). Any id outside the cycle (0, 1, 2, 255, unknown)

@@ -13,6 +13,8 @@
 
 #include <string.h>
 
+#include "servos.h" /* the raw positions the port drives */
+
 #define RING_MASK ((uint16_t)(XGO_PORT_RX_RING_SIZE - 1u))
 
 void xgo_device_init(xgo_device_t *d, xgo_port_t *port, const xgo_board_config_t *cfg)

@@ -8,7 +8,6 @@
 
 #include "cli.h"
 #include "clock.h"
-#include "xgo/actions.h"
 #include "xgo/board.h"
 #include "xgo/regs.h"
 
