@@ -289,6 +289,46 @@ static void test_servo_mode_reads_back_commanded_angles_at_register_speed(void)
     TEST_ASSERT_UINT8_WITHIN(1, 0xBB, rd(XGO_REG_SERVO12));
 }
 
+/* Issue 9 part 6: the vendor library's servo read polls 0x50..0x5B while it
+ * moves a joint. A read that arrives between the write and the next tick -
+ * in the same receive call - gives where the joint is, and every later poll
+ * too: the readings go from +60 to -40 degrees at the servo speed, never
+ * showing the commanded byte ahead of the joint. */
+static void test_joint_registers_read_the_joints_even_right_after_a_write(void)
+{
+    const xgo_profile_t *p = xgo_profile_mini();
+    const uint8_t up = xgo_joint_to_byte(p, XGO_JOINT_HIP, 60000);
+    const uint8_t down = xgo_joint_to_byte(p, XGO_JOINT_HIP, -40000);
+    uint8_t frames[2 * XGO_FRAME_MAX_LEN], reply[16], prev;
+    size_t n;
+    unsigned poll;
+    wr(XGO_REG_SERVO_SPEED, 0xFF); /* 600 deg/s */
+    wr(XGO_REG_SERVO12, up);
+    ticks(XGO_TICK_HZ);
+    TEST_ASSERT_EQUAL_HEX8(up, rd(XGO_REG_SERVO12));
+    n = xgo_frame_encode(XGO_TYPE_WRITE, XGO_REG_SERVO12, &down, 1, frames, sizeof frames);
+    {
+        const uint8_t one = 1;
+        n += xgo_frame_encode(XGO_TYPE_READ, XGO_REG_SERVO12, &one, 1, frames + n, sizeof frames - n);
+    }
+    xgo_board_receive(&board, frames, n, 0);
+    TEST_ASSERT_EQUAL_UINT(9, xgo_board_transmit(&board, reply, sizeof reply));
+    TEST_ASSERT_EQUAL_INT(XGO_TEST_REPLY_OK, xgo_test_check_reply(reply, 9, XGO_REG_SERVO12, 1));
+    TEST_ASSERT_EQUAL_HEX8(up, reply[5]); /* not the command: the joint has not moved yet */
+    prev = up;
+    for (poll = 0; poll < 25; poll++) { /* 50 Hz for half a second */
+        uint8_t now;
+        ticks(XGO_TICK_HZ / 50);
+        now = rd(XGO_REG_SERVO12);
+        TEST_ASSERT_EQUAL_HEX8(xgo_joint_to_byte(p, XGO_JOINT_HIP, joint(1)), now);
+        TEST_ASSERT_TRUE(now <= prev); /* on its way down, never back up */
+        /* 20 ms at 600 deg/s is 12 degrees: about 19 bytes of the 159-degree range */
+        TEST_ASSERT_UINT8_WITHIN(20, prev, now);
+        prev = now;
+    }
+    TEST_ASSERT_EQUAL_HEX8(down, prev);
+}
+
 static void test_unloaded_leg_holds_and_ignores_commands(void)
 {
     int32_t held[3];
@@ -565,6 +605,7 @@ int main(void)
     RUN_TEST(test_mark_time_steps_in_place);
     RUN_TEST(test_leg_mode_puts_the_foot_where_commanded);
     RUN_TEST(test_servo_mode_reads_back_commanded_angles_at_register_speed);
+    RUN_TEST(test_joint_registers_read_the_joints_even_right_after_a_write);
     RUN_TEST(test_unloaded_leg_holds_and_ignores_commands);
     RUN_TEST(test_calibration_records_zero_offsets);
     RUN_TEST(test_repeated_calibration_keeps_offsets_storable);

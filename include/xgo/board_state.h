@@ -44,6 +44,8 @@ typedef struct xgo_regs_s {
     int16_t accel[3];                /* IMU block: acceleration, 16384 = 1 g */
     int16_t gyro[3];                 /* IMU block: angular rate, 16.4 = 1 deg/s */
     uint8_t turn_to[2];              /* last heading command at 0x3F, int16 BE */
+    uint8_t servo_cmd[12];           /* servo-mode commands written to 0x50..0x5B
+                                        (mem there: the joints as they are) */
     xgo_regs_stats_t stats;
 } xgo_regs_t;
 

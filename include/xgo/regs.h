@@ -19,9 +19,12 @@
  *     the three angles (float32 LE degrees), xgo_regs_set_inertial();
  *   - 0x66..0x68 roll/pitch/yaw as int16 big-endian, 0.01 degree;
  *   - 0xC4..0xFF diagnostic counters, uint32 little-endian.
- * One write view: 0x3F (turn to heading) takes two bytes, an int16
+ * Two write views: 0x3F (turn to heading) takes two bytes, an int16
  * big-endian heading in degrees, as one command; the second byte does not go
- * to 0x40. A read of 0x3F gives 0 while turning, 1 when done.
+ * to 0x40. A read of 0x3F gives 0 while turning, 1 when done. Writes to the
+ * joint registers 0x50..0x5B are servo-mode commands kept apart: a read
+ * there always gives the joints as they are, which the board publishes
+ * every tick.
  *
  * A write is validated whole before anything changes (docs/decisions.md).
  * Portable: no OS calls, no heap, no globals, no floating point.

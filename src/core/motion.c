@@ -147,7 +147,7 @@ static void capture_servo_commands(xgo_motion_t *m, xgo_regs_t *r, int entering)
     for (i = 0; i < XGO_SERVO_COUNT; i++) {
         if (xgo_regs_take_written(r, (uint8_t)(XGO_REG_SERVO11 + i))) {
             m->servo_cmd_mdeg[i] = xgo_byte_to_joint(m->profile, (xgo_joint_t)(i % XGO_JOINT_COUNT),
-                                                     xgo_regs_get(r, (uint8_t)(XGO_REG_SERVO11 + i)));
+                                                     xgo_regs_servo_command(r, i));
         }
     }
 }

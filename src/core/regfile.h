@@ -55,6 +55,11 @@ void xgo_regs_set_inertial(xgo_regs_t *r, const int16_t accel[3], const int16_t 
 /* The heading of the last turn command written to 0x3F, in degrees. */
 int16_t xgo_regs_turn_to_deg(const xgo_regs_t *r);
 
+/* The last servo-mode command byte written to 0x50 + servo (servo 0..11),
+ * the initial 0x80 until then and after a reset. A host cannot read it: a
+ * read of 0x50..0x5B gives the joints where they are. */
+uint8_t xgo_regs_servo_command(const xgo_regs_t *r, unsigned servo);
+
 #ifdef __cplusplus
 }
 #endif

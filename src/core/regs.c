@@ -97,16 +97,25 @@ static void store_firmware(xgo_regs_t *r)
     }
 }
 
-static void load_initial(xgo_regs_t *r, int include_nonvolatile)
+/* The joint registers read where the joints are (the board publishes them
+ * every tick); what a host writes there is a servo-mode command, kept apart
+ * in servo_cmd so that no read ever returns it (docs/registers.md). */
+static int is_servo_reg(unsigned addr)
+{
+    return addr >= XGO_REG_SERVO11 && addr <= XGO_REG_SERVO43;
+}
+
+static void load_initial(xgo_regs_t *r, int power_up)
 {
     size_t i;
+    memset(r->servo_cmd, xgo_reg_find(XGO_REG_SERVO11)->initial, sizeof r->servo_cmd);
     for (i = 0; i < REG_TABLE_SIZE; i++) {
         const xgo_reg_desc_t *d = &k_regs[i];
         if ((d->flags & XGO_REGF_COMPUTED) != 0 || d->access == XGO_ACCESS_R) {
             continue;
         }
-        if (!include_nonvolatile && (d->flags & XGO_REGF_NONVOLATILE) != 0) {
-            continue;
+        if (!power_up && ((d->flags & XGO_REGF_NONVOLATILE) != 0 || is_servo_reg(d->addr))) {
+            continue; /* a reset keeps the name, and the joints read where they are */
         }
         memset(&r->mem[d->addr], d->initial, d->width);
     }
@@ -223,6 +232,11 @@ static void apply_write(xgo_regs_t *r, uint8_t addr, const uint8_t *data, size_t
             i += XGO_TURN_TO_LEN - 1u;
             continue;
         }
+        if (is_servo_reg(a)) {
+            r->servo_cmd[a - XGO_REG_SERVO11] = data[i];
+            mark_written(r, (uint8_t)a);
+            continue;
+        }
         if (d->width > 1 && a == d->addr) {
             /* A shorter write sets the whole value: the rest is cleared. */
             memset(&r->mem[a], 0, d->width);
@@ -250,6 +264,11 @@ xgo_drop_reason_t xgo_regs_write(xgo_regs_t *r, uint8_t addr, const uint8_t *dat
     }
     r->stats.writes_ok++;
     return XGO_DROP_NONE;
+}
+
+uint8_t xgo_regs_servo_command(const xgo_regs_t *r, unsigned servo)
+{
+    return r->servo_cmd[servo % sizeof r->servo_cmd];
 }
 
 int16_t xgo_regs_turn_to_deg(const xgo_regs_t *r)
