@@ -159,7 +159,14 @@ static void test_read_shows_physical_units(void)
 /* The attitude as the vendor reads it: 4 bytes, float32 LE degrees. */
 static void test_read_attitude_as_float(void)
 {
+    uint8_t pitch[4] = {0, 0, 0, 0};
+    long long deadline;
     emu_start("--ground-tilt", "5,-2.5");
+    /* the IMU reads the tilt from the first control tick on */
+    deadline = xgo_test_now_ms() + START_MS;
+    while (pitch[3] == 0 && xgo_test_now_ms() < deadline) {
+        port_read(0x63, 4, pitch);
+    }
     TEST_ASSERT_EQUAL_INT(0, cli("-p", g_emu.pty, "read", "imu_pitch", NULL));
     TEST_ASSERT_EQUAL_STRING("0x63 imu_pitch 00 00 20 C0 -2.50 deg\n", g_cli.out);
     TEST_ASSERT_EQUAL_INT(0, cli("-p", g_emu.pty, "read", "imu_roll", "1", NULL));

@@ -165,6 +165,17 @@ static uint32_t xgo_host_loop_wire_ms(const xgo_host_loop_t *l)
     return (uint32_t)(l->wire_us / 1000u);
 }
 
+/* Tells the services what passed the line (the capture records it). */
+static void xgo_host_loop_tap(xgo_host_loop_t *l, int what, const uint8_t *bytes, size_t n)
+{
+    size_t s;
+    for (s = 0; s < l->service_count; s++) {
+        if (l->services[s]->on_line != NULL) {
+            l->services[s]->on_line(l->services[s]->ctx, what, bytes, n);
+        }
+    }
+}
+
 /* Replies for a host that has gone are dropped, as on a real wire. */
 static void xgo_host_loop_discard_replies(xgo_host_loop_t *l)
 {
@@ -172,6 +183,7 @@ static void xgo_host_loop_discard_replies(xgo_host_loop_t *l)
     size_t n;
     while ((n = xgo_board_transmit(l->board, scratch, sizeof scratch)) > 0) {
         l->counters.bytes_discarded += n;
+        xgo_host_loop_tap(l, XGO_HOST_LINE_DISCARDED, scratch, n);
     }
 }
 
@@ -207,6 +219,7 @@ static void xgo_host_loop_take_replies(xgo_host_loop_t *l, uint64_t now_us, uint
         if (n == 0) {
             return;
         }
+        xgo_host_loop_tap(l, XGO_HOST_LINE_TO_HOST, chunk, n); /* as the board sent it */
         if (l->uart_baud != 0) {
             n = xgo_host_loop_uart_out(l, chunk, n, room < sizeof chunk ? room : sizeof chunk);
         }
@@ -245,6 +258,7 @@ static void xgo_host_loop_feed(xgo_host_loop_t *l, uint64_t now_us)
             chunk = l->in_len - l->in_fed;
         }
         xgo_host_loop_set_trace_time(l, now_us);
+        xgo_host_loop_tap(l, XGO_HOST_LINE_TO_BOARD, l->in + l->in_fed, chunk);
         xgo_board_receive(l->board, l->in + l->in_fed, chunk, xgo_host_loop_wire_ms(l));
         l->in_fed += chunk;
         if (l->baud_pacing) {
@@ -265,6 +279,7 @@ static void xgo_host_loop_end_session(xgo_host_loop_t *l)
 {
     if (l->hangup_pending) {
         l->hangup_pending = 0;
+        xgo_host_loop_tap(l, XGO_HOST_LINE_HANGUP, NULL, 0);
         xgo_board_hangup(l->board);
         if (l->host_gone) {
             xgo_host_loop_discard_replies(l); /* what a frame found inside it asked */

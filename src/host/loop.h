@@ -31,12 +31,22 @@ typedef struct xgo_host_counters_s {
 
 #define XGO_HOST_INBUF_BYTES 4096u
 
+/* What passed the board's serial line, for on_line (the values of
+ * xgo_pcap_dir_t, src/host/pcap.h). */
+#define XGO_HOST_LINE_TO_BOARD 0   /* fed to the board */
+#define XGO_HOST_LINE_TO_HOST 1    /* replies on their way to the host */
+#define XGO_HOST_LINE_DISCARDED 2  /* replies dropped: no host attached */
+#define XGO_HOST_LINE_HANGUP 4     /* the board was told the host hung up (no bytes) */
+
 /* Something served in the same loop besides the pty (the view server, the
- * motion recorder); every function is optional (NULL). In each turn the
- * ticks that are due and the pty come first, services after them, so a
- * service never delays a reply or a tick by more than its own bounded work. */
+ * motion recorder, the capture, the TCP bridge); every function is optional
+ * (NULL). In each turn the ticks that are due and the pty come first,
+ * services after them, so a service never delays a reply or a tick by more
+ * than its own bounded work. */
 typedef struct xgo_host_service_s {
     void (*after_tick)(void *ctx); /* after every control tick */
+    /* Bytes of the serial line as they pass the board (XGO_HOST_LINE_*). */
+    void (*on_line)(void *ctx, int what, const uint8_t *bytes, size_t n);
     /* Descriptors to poll this turn (at most max); returns how many. */
     size_t (*poll_fds)(void *ctx, struct pollfd *fds, size_t max);
     /* Each turn, after the pty; fds as poll_fds filled them, with the
@@ -45,7 +55,7 @@ typedef struct xgo_host_service_s {
     void *ctx;
 } xgo_host_service_t;
 
-#define XGO_HOST_MAX_SERVICES 2u
+#define XGO_HOST_MAX_SERVICES 4u
 #define XGO_HOST_MAX_SERVICE_FDS 32u
 
 typedef struct xgo_host_loop_s {

@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "capture.h"
 #include "clock.h"
 #include "link.h"
 #include "loop.h"
@@ -18,6 +19,7 @@
 #include "pty.h"
 #include "record.h"
 #include "state_file.h"
+#include "tcp_bridge.h"
 #include "trace.h"
 #include "view_server.h"
 #include "xgo/board.h"
@@ -79,6 +81,40 @@ static int xgo_host_open_outputs(const xgo_host_options_t *opts, xgo_host_view_t
     return 0;
 }
 
+/* --capture and --tcp: what passes the serial line, kept and bridged. The
+ * capture opens before the pty (its first note holds the board as loaded);
+ * the bridge needs the pty's path. */
+static xgo_host_capture_t xgo_host_capture;
+static xgo_host_tcp_t xgo_host_tcp;
+
+static int xgo_host_open_line_extras(const xgo_host_options_t *opts, const xgo_board_t *board,
+                                     const xgo_host_pty_t *pty, const xgo_host_loop_t *loop,
+                                     char *err, size_t err_size)
+{
+    if (pty == NULL) {
+        return opts->capture_path == NULL
+                   ? 0
+                   : xgo_host_capture_open(&xgo_host_capture, opts->capture_path, board, err, err_size);
+    }
+    xgo_host_tcp.listen_fd = -1;
+    return opts->tcp ? xgo_host_tcp_open(&xgo_host_tcp, opts->tcp_addr, opts->tcp_port,
+                                         pty->slave_path, loop, err, err_size)
+                     : 0;
+}
+
+static int xgo_host_close_line_extras(const xgo_host_options_t *opts)
+{
+    int rc = 0;
+    if (opts->capture_path != NULL && xgo_host_capture_close(&xgo_host_capture, stderr) != 0) {
+        rc = -1;
+    }
+    if (opts->tcp) {
+        xgo_host_tcp_print_counters(&xgo_host_tcp, stderr);
+        xgo_host_tcp_close(&xgo_host_tcp);
+    }
+    return rc;
+}
+
 int main(int argc, char **argv)
 {
     static xgo_board_t board;   /* static: large, and lives as long as the process */
@@ -119,12 +155,18 @@ int main(int argc, char **argv)
         fprintf(stderr, "xgo-emu: %s\n", err);
         return XGO_EXIT_RUNTIME;
     }
-    if (xgo_host_open_outputs(&opts, &view, &record, &board, err, sizeof err) != 0) {
+    if (xgo_host_open_outputs(&opts, &view, &record, &board, err, sizeof err) != 0 ||
+        xgo_host_open_line_extras(&opts, &board, NULL, NULL, err, sizeof err) != 0) {
         fprintf(stderr, "xgo-emu: %s\n", err);
         return XGO_EXIT_RUNTIME;
     }
     if (xgo_host_pty_open(&pty, err, sizeof err) != 0) {
         fprintf(stderr, "xgo-emu: %s\n", err);
+        return XGO_EXIT_RUNTIME;
+    }
+    if (xgo_host_open_line_extras(&opts, &board, &pty, &loop, err, sizeof err) != 0) {
+        fprintf(stderr, "xgo-emu: %s\n", err);
+        xgo_host_pty_close(&pty);
         return XGO_EXIT_RUNTIME;
     }
     if (opts.link_path != NULL) {
@@ -157,8 +199,17 @@ int main(int argc, char **argv)
     if (opts.record_path != NULL) {
         (void)xgo_host_loop_add_service(&loop, &record.service);
     }
+    if (opts.capture_path != NULL) {
+        (void)xgo_host_loop_add_service(&loop, &xgo_host_capture.service);
+    }
+    if (opts.tcp) {
+        (void)xgo_host_loop_add_service(&loop, &xgo_host_tcp.service);
+    }
 
     printf("%s\n", pty.slave_path);
+    if (opts.tcp) {
+        printf("tcp: %s:%u\n", xgo_host_tcp.host, xgo_host_tcp.port);
+    }
     if (opts.view) {
         printf("view: http://%s:%u/\n", view.host, view.port);
     }
@@ -178,6 +229,9 @@ int main(int argc, char **argv)
         rc = -1;
     }
     xgo_host_loop_print_counters(&loop, stderr);
+    if (xgo_host_close_line_extras(&opts) != 0) {
+        rc = -1;
+    }
     if (opts.view) {
         xgo_host_view_print_counters(&view, stderr);
         xgo_host_view_close(&view);

@@ -10,10 +10,11 @@
 
 #include "uart_model.h"
 
-#include <arpa/inet.h>
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "net.h"
 
 typedef enum xgo_host_apply_e {
     XGO_HOST_APPLY_OK = 0,
@@ -211,39 +212,44 @@ static xgo_host_apply_t xgo_host_apply_ground_tilt(xgo_host_options_t *opts, con
     return XGO_HOST_APPLY_OK;
 }
 
-/* --view [HOST:]PORT: HOST an IPv4 address or "localhost" (the default),
- * PORT 0..65535 (0: any free port). */
+/* --view, --tcp: [HOST:]PORT (net.h: HOST 127.0.0.1 unless given). */
+static xgo_host_apply_t xgo_host_apply_endpoint(const char *option, const char *value,
+                                                 uint32_t *addr, unsigned *port, int *given,
+                                                 char *err, size_t err_size)
+{
+    char why[128];
+    if (!xgo_host_net_parse_endpoint(value, addr, port, why, sizeof why)) {
+        snprintf(err, err_size, "--%s %s, not '%s'", option, why, value);
+        return XGO_HOST_APPLY_BAD_VALUE;
+    }
+    *given = 1;
+    return XGO_HOST_APPLY_OK;
+}
+
 static xgo_host_apply_t xgo_host_apply_view(xgo_host_options_t *opts, const char *value,
                                              char *err, size_t err_size)
 {
-    const char *colon = strrchr(value, ':');
-    const char *port_text = colon != NULL ? colon + 1 : value;
-    unsigned long port;
-    char host[64];
-    struct in_addr addr;
-    addr.s_addr = htonl(INADDR_LOOPBACK);
-    if (colon != NULL) {
-        size_t n = (size_t)(colon - value);
-        if (n == 0 || n >= sizeof host) {
-            n = sizeof host; /* refused below */
-        } else {
-            memcpy(host, value, n);
-            host[n] = '\0';
-        }
-        if (n == sizeof host ||
-            (strcmp(host, "localhost") != 0 && inet_pton(AF_INET, host, &addr) != 1)) {
-            snprintf(err, err_size,
-                     "--view HOST must be an IPv4 address or localhost, not '%s'", value);
-            return XGO_HOST_APPLY_BAD_VALUE;
-        }
-    }
-    if (!xgo_host_parse_ulong(port_text, 0, 65535, &port)) {
-        snprintf(err, err_size, "--view needs [HOST:]PORT with PORT 0..65535, not '%s'", value);
+    return xgo_host_apply_endpoint("view", value, &opts->view_addr, &opts->view_port, &opts->view,
+                                   err, err_size);
+}
+
+/* The serial line over TCP (tcp_bridge.c). */
+static xgo_host_apply_t xgo_host_apply_tcp(xgo_host_options_t *opts, const char *value,
+                                            char *err, size_t err_size)
+{
+    return xgo_host_apply_endpoint("tcp", value, &opts->tcp_addr, &opts->tcp_port, &opts->tcp,
+                                   err, err_size);
+}
+
+/* --capture FILE.pcap (capture.c). */
+static xgo_host_apply_t xgo_host_apply_capture(xgo_host_options_t *opts, const char *value,
+                                                char *err, size_t err_size)
+{
+    if (value[0] == '\0') {
+        snprintf(err, err_size, "--capture needs a non-empty FILE");
         return XGO_HOST_APPLY_BAD_VALUE;
     }
-    opts->view = 1;
-    opts->view_addr = ntohl(addr.s_addr);
-    opts->view_port = (unsigned)port;
+    opts->capture_path = value;
     return XGO_HOST_APPLY_OK;
 }
 
@@ -335,6 +341,12 @@ static const xgo_host_option_t xgo_host_option_table[] = {
     {"record", 0, "FILE", "write the motion log to FILE (CSV, one row per tick)",
      xgo_host_apply_record},
     {"record-hz", 0, "N", "motion log rows a second instead, 1..500", xgo_host_apply_record_hz},
+    {"tcp", 0, "[HOST:]PORT",
+     "the serial line over TCP too, one client at a time (HOST\n"
+     "127.0.0.1, PORT 0 = any free port; pyserial socket://)",
+     xgo_host_apply_tcp},
+    {"capture", 0, "FILE", "record every byte of the line in FILE (pcap, docs/capture.md)",
+     xgo_host_apply_capture},
     {"help", 'h', NULL, "show this help and exit", xgo_host_apply_help},
     {"version", 0, NULL, "show the version and exit", xgo_host_apply_version},
 };
@@ -401,6 +413,7 @@ xgo_host_parse_result_t xgo_host_options_parse(xgo_host_options_t *opts, int arg
     memset(opts, 0, sizeof *opts);
     xgo_board_default_config(&opts->board);
     opts->view_addr = 0x7F000001ul; /* 127.0.0.1 */
+    opts->tcp_addr = 0x7F000001ul;
 
     for (i = 1; i < argc; i++) {
         const char *word = argv[i];

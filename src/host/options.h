@@ -27,6 +27,10 @@ typedef struct xgo_host_options_s {
     uint32_t view_addr;       /* its IPv4 address, host byte order (127.0.0.1) */
     unsigned view_port;       /* 0 = any free port */
     unsigned view_hz;         /* --view-hz, events a second */
+    int tcp;                  /* --tcp given */
+    uint32_t tcp_addr;        /* its IPv4 address, host byte order (127.0.0.1) */
+    unsigned tcp_port;        /* 0 = any free port */
+    const char *capture_path; /* --capture, NULL = no capture */
     const char *record_path;  /* --record, NULL = no motion log */
     unsigned record_hz;       /* --record-hz, 0 = a row every tick */
 } xgo_host_options_t;

@@ -106,7 +106,9 @@ static int xgo_pcap_write_record(xgo_host_pcap_writer_t *w, uint64_t mono_us, ui
     rec[18] = (uint8_t)((tick >> 8) & 0xFFu);
     rec[19] = (uint8_t)((tick >> 16) & 0xFFu);
     rec[20] = (uint8_t)(tick >> 24);
-    memcpy(rec + XGO_PCAP_RECORD_HEADER_LEN + XGO_PCAP_PSEUDO_LEN, bytes, n);
+    if (n > 0) {
+        memcpy(rec + XGO_PCAP_RECORD_HEADER_LEN + XGO_PCAP_PSEUDO_LEN, bytes, n);
+    }
     if (xgo_pcap_write_whole(w, rec, XGO_PCAP_RECORD_HEADER_LEN + len) != 0) {
         return -1;
     }
@@ -129,6 +131,15 @@ int xgo_host_pcap_write(xgo_host_pcap_writer_t *w, uint64_t mono_us, xgo_pcap_di
         n -= part;
     }
     return 0;
+}
+
+int xgo_host_pcap_event(xgo_host_pcap_writer_t *w, uint64_t mono_us, xgo_pcap_dir_t dir,
+                        uint32_t tick)
+{
+    if (w->fd < 0 || w->failed) {
+        return -1;
+    }
+    return xgo_pcap_write_record(w, mono_us, (uint8_t)dir, tick, NULL, 0);
 }
 
 int xgo_host_pcap_note(xgo_host_pcap_writer_t *w, uint64_t mono_us, const char *text)

@@ -9,7 +9,8 @@
  *     byte 0     direction: XGO_PCAP_HOST_TO_BOARD, _BOARD_TO_HOST,
  *                _DISCARDED (replies the board made while no host was
  *                attached: never on the wire), _NOTE (ASCII text: who wrote
- *                the capture, with which settings)
+ *                the capture, with which settings), _HANGUP (no bytes: the
+ *                board was told the host hung up)
  *     bytes 1-4  board tick (uint32 little-endian) at which the bytes were
  *                fed to the board or taken from it; XGO_PCAP_TICK_UNKNOWN
  *                when the writer cannot know (a real robot's port)
@@ -34,7 +35,8 @@ typedef enum xgo_pcap_dir_e {
     XGO_PCAP_HOST_TO_BOARD = 0,
     XGO_PCAP_BOARD_TO_HOST = 1,
     XGO_PCAP_DISCARDED = 2,
-    XGO_PCAP_NOTE = 3
+    XGO_PCAP_NOTE = 3,
+    XGO_PCAP_HANGUP = 4 /* no bytes: the host hung up, the board dropped its partial frame */
 } xgo_pcap_dir_t;
 
 typedef struct xgo_host_pcap_writer_s {
@@ -56,6 +58,10 @@ int xgo_host_pcap_create(xgo_host_pcap_writer_t *w, const char *path, uint64_t n
  * the writer stays failed and writes nothing. n == 0 writes nothing. */
 int xgo_host_pcap_write(xgo_host_pcap_writer_t *w, uint64_t mono_us, xgo_pcap_dir_t dir,
                         uint32_t tick, const uint8_t *bytes, size_t n);
+
+/* A record without bytes (XGO_PCAP_HANGUP). */
+int xgo_host_pcap_event(xgo_host_pcap_writer_t *w, uint64_t mono_us, xgo_pcap_dir_t dir,
+                        uint32_t tick);
 
 /* A NOTE record holding text. */
 int xgo_host_pcap_note(xgo_host_pcap_writer_t *w, uint64_t mono_us, const char *text);

@@ -18,6 +18,7 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include "net.h"
 #include "view_routes.h"
 
 /* A lingering close (after an answer that ends the connection) waits this
@@ -25,40 +26,15 @@
  * into a reset that destroys the answer. */
 #define XGO_HOST_VIEW_LINGER_US 2000000u
 
-static int xgo_host_view_nonblocking(int fd)
-{
-    int flags = fcntl(fd, F_GETFL);
-    return (flags < 0 || fcntl(fd, F_SETFL, flags | O_NONBLOCK) != 0 ||
-            fcntl(fd, F_SETFD, FD_CLOEXEC) != 0)
-               ? -1
-               : 0;
-}
-
 static int xgo_host_view_listen(xgo_host_view_t *v, uint32_t addr, unsigned port, char *err,
                                 size_t err_size)
 {
-    struct sockaddr_in sa;
-    socklen_t len = sizeof sa;
-    int one = 1;
-    memset(&sa, 0, sizeof sa);
-    sa.sin_family = AF_INET;
-    sa.sin_addr.s_addr = htonl(addr);
-    sa.sin_port = htons((uint16_t)port);
-    inet_ntop(AF_INET, &sa.sin_addr, v->host, sizeof v->host);
-    v->listen_fd = socket(AF_INET, SOCK_STREAM, 0);
-    if (v->listen_fd < 0 || xgo_host_view_nonblocking(v->listen_fd) != 0 ||
-        setsockopt(v->listen_fd, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one) != 0 ||
-        bind(v->listen_fd, (struct sockaddr *)&sa, sizeof sa) != 0 ||
-        listen(v->listen_fd, (int)XGO_HOST_VIEW_MAX_CLIENTS) != 0 ||
-        getsockname(v->listen_fd, (struct sockaddr *)&sa, &len) != 0) {
+    v->listen_fd = xgo_host_net_listen(addr, port, (int)XGO_HOST_VIEW_MAX_CLIENTS, v->host,
+                                       sizeof v->host, &v->port);
+    if (v->listen_fd < 0) {
         snprintf(err, err_size, "--view %s:%u: %s", v->host, port, strerror(errno));
-        if (v->listen_fd >= 0) {
-            close(v->listen_fd);
-        }
-        v->listen_fd = -1;
         return -1;
     }
-    v->port = ntohs(sa.sin_port);
     return 0;
 }
 
@@ -168,7 +144,7 @@ static void xgo_host_view_accept(xgo_host_view_t *v, uint64_t now_us)
         }
         for (i = 0; i < XGO_HOST_VIEW_MAX_CLIENTS && v->clients[i].fd >= 0; i++) {
         }
-        if (i == XGO_HOST_VIEW_MAX_CLIENTS || xgo_host_view_nonblocking(fd) != 0) {
+        if (i == XGO_HOST_VIEW_MAX_CLIENTS || xgo_host_net_nonblocking(fd) != 0) {
             xgo_host_view_refuse(v, fd);
             continue;
         }

@@ -114,6 +114,8 @@ static int xgo_cli_decode_pcap(xgo_cli_t *cli, const char *path, xgo_host_trace_
             xgo_cli_tracer_feed(&board, rec.bytes, rec.n, t);
         } else if (rec.dir == XGO_PCAP_BOARD_TO_HOST) {
             xgo_cli_tracer_feed(&host, rec.bytes, rec.n, t);
+        } else if (rec.dir == XGO_PCAP_HANGUP) {
+            xgo_cli_note(trace, json, "hang-up (the board drops a partial frame)", rec.bytes, 0);
         } else {
             xgo_cli_note(trace, json, rec.dir == XGO_PCAP_NOTE ? "note " : "discarded (no host)",
                          rec.bytes, rec.n);

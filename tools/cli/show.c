@@ -6,96 +6,25 @@
 #include <string.h>
 
 #include "cli.h"
-#include "decode.h"
+#include "meaning.h"
 #include "xgo/board.h"
 #include "xgo/reg_units.h"
 #include "xgo/regs.h"
 
-/* How a unit is shown: base units per display unit (a power of ten), the
- * decimals kept, and its name. */
-typedef struct xgo_cli_display_s {
-    unsigned scale; /* log10(base units per display unit) */
-    unsigned decimals;
-    const char *name;
-} xgo_cli_display_t;
-
-static xgo_cli_display_t xgo_cli_display(int unit)
-{
-    xgo_cli_display_t d = {0, 0, ""};
-    switch (unit) {
-    case XGO_UNIT_UM_S: d.scale = 4; d.decimals = 2; d.name = "cm/s"; break; /* the vendor's unit */
-    case XGO_UNIT_MDEG_S: d.scale = 3; d.decimals = 2; d.name = "deg/s"; break;
-    case XGO_UNIT_MDEG: d.scale = 3; d.decimals = 2; d.name = "deg"; break;
-    case XGO_UNIT_UM: d.scale = 3; d.decimals = 2; d.name = "mm"; break;
-    case XGO_UNIT_MS: d.scale = 3; d.decimals = 3; d.name = "s"; break;
-    case XGO_UNIT_PERCENT: d.name = "%"; break;
-    default: break;
-    }
-    return d;
-}
-
-/* value / 10^scale with `decimals` digits, half away from zero, no "-0". */
-static void xgo_cli_fixed(int64_t value, unsigned scale, unsigned decimals, int sign, char *out,
-                          size_t out_size)
-{
-    int64_t div = 1, keep = 1, mag = value < 0 ? -value : value;
-    unsigned i;
-    for (i = 0; i < scale; i++) {
-        div *= 10;
-    }
-    for (i = 0; i < decimals; i++) {
-        keep *= 10;
-    }
-    mag = (mag * keep * 2 + div) / (2 * div); /* in units of 10^-decimals */
-    snprintf(out, out_size, "%s%lld", mag == 0 ? "" : (value < 0 ? "-" : (sign ? "+" : "")),
-             (long long)(mag / keep));
-    if (decimals > 0) {
-        size_t len = strlen(out);
-        snprintf(out + len, out_size - len, ".%0*lld", (int)decimals, (long long)(mag % keep));
-    }
-}
-
 void xgo_cli_format_value(int unit, int32_t value, int sign, char *out, size_t out_size)
 {
-    xgo_cli_display_t d = xgo_cli_display(unit);
-    size_t len;
-    xgo_cli_fixed(value, d.scale, d.decimals, sign, out, out_size);
-    len = strlen(out);
-    snprintf(out + len, out_size - len, unit == XGO_UNIT_PERCENT ? "%s" : " %s", d.name);
-}
-
-/* Signed registers (those that mean negative values too) show a '+'. */
-static int xgo_cli_signed(const xgo_profile_t *p, uint8_t addr)
-{
-    int32_t lo, hi;
-    return xgo_reg_value_range(p, addr, &lo, &hi) && lo < 0;
-}
-
-/* A unit register's byte in its unit; 0 when the model is unknown. */
-static int xgo_cli_physical_text(xgo_cli_t *cli, uint8_t addr, uint8_t b, char *out, size_t size)
-{
-    const xgo_profile_t *p = xgo_cli_profile(cli);
-    int32_t v;
-    if (p == NULL || !xgo_reg_byte_to_value(p, addr, b, &v)) {
-        return 0;
-    }
-    if (v == 0 && b == 0 && (xgo_reg_unit(addr) == XGO_UNIT_MS || addr == XGO_REG_MARK_TIME)) {
-        snprintf(out, size, "off");
-        return 1;
-    }
-    xgo_cli_format_value((int)xgo_reg_unit(addr), v, xgo_cli_signed(p, addr), out, size);
-    return 1;
+    xgo_host_format_value(unit, value, sign, out, out_size);
 }
 
 void xgo_cli_meaning(xgo_cli_t *cli, uint8_t addr, uint8_t b, char *out, size_t out_size)
 {
-    out[0] = '\0';
-    if (xgo_reg_unit(addr) != XGO_UNIT_NONE && xgo_cli_physical_text(cli, addr, b, out, out_size)) {
+    /* the model matters only to a register with a unit */
+    const xgo_profile_t *p = xgo_reg_unit(addr) != XGO_UNIT_NONE ? xgo_cli_profile(cli) : NULL;
+    if (xgo_reg_unit(addr) != XGO_UNIT_NONE && p == NULL) {
+        out[0] = '\0';
         return;
     }
-    if (!xgo_host_decode_value(addr, b, out, out_size)) {
-        out[0] = '\0';
-    }
+    xgo_host_reg_meaning(p != NULL ? p : xgo_profile_mini(), addr, b, out, out_size);
 }
 
 /* One shown register: what a line and a JSON object are made of. */
@@ -208,7 +137,7 @@ static void xgo_cli_attitude(xgo_cli_line_t *l)
 static void xgo_cli_attitude16(xgo_cli_line_t *l)
 {
     int16_t c = xgo_cli_be16(l->bytes);
-    xgo_cli_fixed(c, 2, 2, 1, l->text, sizeof l->text);
+    xgo_host_format_fixed(c, 2, 2, 1, l->text, sizeof l->text);
     snprintf(l->text + strlen(l->text), sizeof l->text - strlen(l->text), " deg");
     l->has_number = 1;
     l->number = c;
@@ -257,7 +186,7 @@ static void xgo_cli_byte_line(xgo_cli_t *cli, uint8_t addr, const uint8_t *b, xg
     xgo_cli_meaning(cli, addr, *b, l->text, sizeof l->text);
     if (xgo_reg_unit(addr) != XGO_UNIT_NONE && (p = xgo_cli_profile(cli)) != NULL &&
         xgo_reg_byte_to_value(p, addr, *b, &v)) {
-        xgo_cli_display_t d = xgo_cli_display((int)xgo_reg_unit(addr));
+        xgo_host_display_t d = xgo_host_unit_display((int)xgo_reg_unit(addr));
         l->has_number = 1;
         l->number = v;
         l->scale = d.scale;
