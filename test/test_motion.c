@@ -267,6 +267,50 @@ static void test_leg_mode_puts_the_foot_where_commanded(void)
     TEST_ASSERT_INT32_WITHIN(100, xgo_byte_to_foot(p, XGO_AXIS_Z, 0x40), foot.z);
 }
 
+/* Issue 9 part 5: the foot registers start at the standing stance (z byte
+ * 0x90 = 97.6 mm on the Mini, the standing height; 0x80 would be 95.1 mm by
+ * the vendor's formula), at power-up and after a reset, so a host entering
+ * leg mode from standing - here the vendor library's leg(1, [0, 0, 97.6])
+ * - moves nothing: every joint, every foot and the world pose stay put. */
+static void test_leg_mode_entered_from_standing_keeps_the_stance(void)
+{
+    const xgo_profile_t *p = xgo_profile_mini();
+    const uint8_t stand_z = xgo_foot_to_byte(p, XGO_AXIS_Z, 97589);
+    int32_t before[XGO_SERVO_COUNT], after[XGO_SERVO_COUNT];
+    xgo_world_pose_t w;
+    unsigned leg;
+    TEST_ASSERT_EQUAL_HEX8(0x90, stand_z);
+    TEST_ASSERT_INT32_WITHIN(50, 95100, xgo_byte_to_foot(p, XGO_AXIS_Z, 0x80));
+    for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
+        TEST_ASSERT_EQUAL_HEX8(0x90, rd((uint8_t)XGO_FOOT_REG(leg, XGO_AXIS_Z)));
+        TEST_ASSERT_EQUAL_HEX8(0x80, rd((uint8_t)XGO_FOOT_REG(leg, XGO_AXIS_X)));
+    }
+    xgo_board_joints_mdeg(&board, before);
+    wr(XGO_REG_LEG1_X, vendor_byte(0, 35));
+    wr(XGO_REG_LEG1_Y, vendor_byte(0, 18));
+    wr(XGO_REG_LEG1_Z, stand_z);
+    ticks(XGO_TICK_HZ);
+    TEST_ASSERT_EQUAL_HEX8(XGO_MODE_LEG, rd(XGO_REG_MODE));
+    xgo_board_joints_mdeg(&board, after);
+    TEST_ASSERT_EQUAL_INT32_ARRAY(before, after, XGO_SERVO_COUNT);
+    xgo_board_world_pose(&board, &w);
+    TEST_ASSERT_EQUAL_INT32(0, w.x_um);
+    TEST_ASSERT_EQUAL_INT32(0, w.y_um);
+    /* a reset puts them back to the stance too */
+    wr(XGO_REG_LEG2_Z, 0x20);
+    wr(XGO_REG_ACTION, XGO_ACTION_RESET);
+    ticks(1);
+    TEST_ASSERT_EQUAL_HEX8(0x90, rd(XGO_REG_LEG2_Z));
+    /* the Lite's stance height (85.1 mm) is its range's middle: 0x80 */
+    {
+        xgo_board_config_t cfg;
+        xgo_board_default_config(&cfg);
+        cfg.model = XGO_MODEL_LITE;
+        xgo_board_init(&board, &cfg);
+        TEST_ASSERT_EQUAL_HEX8(0x80, rd(XGO_REG_LEG4_Z));
+    }
+}
+
 static void test_servo_mode_reads_back_commanded_angles_at_register_speed(void)
 {
     const xgo_profile_t *p = xgo_profile_mini();
@@ -604,6 +648,7 @@ int main(void)
     RUN_TEST(test_self_stabilisation_levels_the_imu);
     RUN_TEST(test_mark_time_steps_in_place);
     RUN_TEST(test_leg_mode_puts_the_foot_where_commanded);
+    RUN_TEST(test_leg_mode_entered_from_standing_keeps_the_stance);
     RUN_TEST(test_servo_mode_reads_back_commanded_angles_at_register_speed);
     RUN_TEST(test_joint_registers_read_the_joints_even_right_after_a_write);
     RUN_TEST(test_unloaded_leg_holds_and_ignores_commands);

@@ -195,6 +195,7 @@ void xgo_board_init(xgo_board_t *b, const xgo_board_config_t *cfg)
                   b->config.model == XGO_MODEL_LITE ? 0x01u : 0x00u);
     xgo_regs_set(&b->regs, XGO_REG_BATTERY, b->config.battery_pct);
     xgo_motion_init(&b->motion, xgo_profile_get((unsigned)b->config.model), b->config.battery_pct);
+    xgo_motion_init_registers(&b->motion, &b->regs);
     xgo_motion_publish(&b->motion, &b->regs);
 }
 

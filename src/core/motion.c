@@ -107,11 +107,21 @@ static void clear_motion_registers(xgo_regs_t *r)
     }
 }
 
+void xgo_motion_init_registers(const xgo_motion_t *m, xgo_regs_t *r)
+{
+    const uint8_t z = xgo_foot_to_byte(m->profile, XGO_AXIS_Z, m->stand.z_um);
+    unsigned leg;
+    for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
+        xgo_regs_set(r, (uint8_t)XGO_FOOT_REG(leg, XGO_AXIS_Z), z);
+    }
+}
+
 /* Action 255: every register back to its initial value, then 1 s of
  * standing (the player's reset action). */
 static void reset_all(xgo_motion_t *m, xgo_regs_t *r)
 {
     xgo_regs_restore_initial(r);
+    xgo_motion_init_registers(m, r);
     xgo_servos_load(&m->servos, XGO_SERVO_ALL_MASK);
     m->perform = 0;
     m->perform_last = 0;

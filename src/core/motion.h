@@ -43,6 +43,13 @@ extern "C" {
 
 void xgo_motion_init(xgo_motion_t *m, const xgo_profile_t *profile, uint8_t battery_pct);
 
+/* The registers whose initial value depends on the profile: the foot z
+ * registers start at the standing height (Mini 0x90 = 97.6 mm; the table's
+ * 0x80 is 95.1 mm by the vendor's formula), so leg mode entered from
+ * standing keeps the stance (docs/motion.md). The board calls it at init;
+ * action 255 restores them with the rest. */
+void xgo_motion_init_registers(const xgo_motion_t *m, xgo_regs_t *r);
+
 /* One control tick: consume host writes in regs, move, publish state to regs. */
 void xgo_motion_tick(xgo_motion_t *m, xgo_regs_t *regs);
 
