@@ -28,6 +28,13 @@
  * outcome is done or refused returns int 1 (done) or 0 (refused, nothing
  * changed); observers return the value or fill out-parameters.
  *
+ * Checks: everything from the wire and every register value a host writes
+ * is expected input - dropped, counted, traced or clamped, never asserted.
+ * Caller bugs are XGO_ASSERT (xgo/config.h): a NULL board, bytes or buffer
+ * with a non-zero length, a config with an unknown model or a battery over
+ * 100 %, a joint index past 11; with the checks compiled out the documented
+ * release behaviour applies (the battery clamped to 100, joint % 3).
+ *
  * Portable: no OS calls, no heap, no globals, no floating point.
  */
 #ifndef XGO_BOARD_H

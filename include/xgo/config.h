@@ -6,7 +6,9 @@
  * the core and for every file that includes a core header: the options size
  * structs the caller owns.
  *
- * Only macros; included by every public header that depends on an option.
+ * Macros, and the one hook an option asks the application for
+ * (xgo_assert_failed); included by every public header that depends on an
+ * option.
  */
 #ifndef XGO_CONFIG_H
 #define XGO_CONFIG_H
@@ -33,6 +35,31 @@
 /* Define XGO_WIDE_MUL_SPLIT to compute 32x32->64-bit products from 16-bit
  * halves and use the divider-free loops on any target, as the core does on
  * ARMv6-M (a test aid: same results, docs/mcu.md). Off by default. */
+
+/* Checks for caller bugs (XGO_ASSERT in the core): 1 = on, 0 = compiled out.
+ * Only bugs are checked this way - a NULL board, a joint index past 11, a
+ * board configured with a battery over 100 %, a path the code rules out.
+ * Bad input from the wire is expected and never asserted: it is dropped,
+ * counted and traced (each header says which of its checks is which).
+ * Default: on unless NDEBUG is defined; the CMake build sets it for hosted
+ * builds with XGO_ASSERTS (on at top level), so tests run with the checks. */
+#ifndef XGO_ASSERT_ENABLED
+#ifdef NDEBUG
+#define XGO_ASSERT_ENABLED 0
+#else
+#define XGO_ASSERT_ENABLED 1
+#endif
+#endif
+
+#if XGO_ASSERT_ENABLED
+/* Called when a check fails; must not return into the core (abort, reset,
+ * or stop in a debugger). The application provides it: on a hosted system
+ * the CMake target xgo::core brings a default that prints the check to
+ * stderr and calls abort() (src/host/assert_hosted.c; a definition of your
+ * own takes precedence); on a microcontroller it is the port's hook, e.g.
+ * log over a debug channel and reset (tools/mcu/mcu_selftest.c has one). */
+void xgo_assert_failed(const char *file, int line, const char *expr);
+#endif
 
 #if XGO_TX_BUFFER_SIZE < 255u || XGO_TX_BUFFER_SIZE > 65535u
 #error "XGO_TX_BUFFER_SIZE must hold one whole reply (255 bytes) and fit uint16_t"

@@ -6,6 +6,9 @@
  * tests) calls them; firmware on a real board has sensors instead and never
  * includes this header.
  *
+ * Checks: values out of range are expected (a slider, a script) and clamped
+ * as documented per call; none asserts.
+ *
  * All take effect at the next xgo_board_tick(). Portable like the rest of the
  * core: no OS calls, no heap, no globals, no floating point.
  */

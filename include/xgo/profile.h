@@ -21,6 +21,8 @@
  *   2            x3     "upper"      hip roll (abduction)
  *
  * Units: lengths in micrometres (_um), angles in millidegrees (_mdeg).
+ * Checks: none fail; an unknown model code gives the Mini (documented).
+ *
  * Portable: no OS calls, no heap, no globals (profiles are const data), no
  * floating point.
  */

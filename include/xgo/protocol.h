@@ -15,6 +15,10 @@
  * rescanned for the next header, so a good frame hiding behind garbage is
  * still found. Bad input is expected, so it is counted, never asserted.
  *
+ * Checks: bytes are expected input, all of them (counted, never asserted);
+ * a NULL buffer with a non-zero length is a caller bug (XGO_ASSERT,
+ * xgo/config.h). xgo_frame_encode refuses what no frame can hold (returns 0).
+ *
  * Portable: no OS calls, no heap, no globals; all state is in xgo_parser_t.
  */
 #ifndef XGO_PROTOCOL_H

@@ -27,6 +27,9 @@
  * every tick.
  *
  * A write is validated whole before anything changes (docs/decisions.md).
+ * Checks: lookups take any address or value (unmapped: NULL / "-", outside a
+ * set: 0); none asserts.
+ *
  * Portable: no OS calls, no heap, no globals, no floating point.
  */
 #ifndef XGO_REGS_H

@@ -5,6 +5,7 @@
 
 #include <string.h>
 
+#include "check.h"
 #include "codec.h"
 #include "motion.h"
 #include "regfile.h"
@@ -69,6 +70,7 @@ size_t xgo_board_transmit(xgo_board_t *b, uint8_t *out, size_t max)
 {
     size_t n = b->tx_len < max ? b->tx_len : max;
     size_t i;
+    XGO_ASSERT(out != NULL || max == 0);
     for (i = 0; i < n; i++) {
         out[i] = b->tx[(b->tx_head + i) % XGO_TX_BUFFER_SIZE];
     }
@@ -154,7 +156,8 @@ static void handle_read(xgo_board_t *b, const xgo_frame_t *f)
     xgo_board_counters(b, counters);
     xgo_regs_set_diag(&b->regs, counters);
     if (xgo_regs_read(&b->regs, f->addr, n, data) != XGO_DROP_NONE) {
-        return; /* the parser already rejects such ranges */
+        XGO_ASSERT(!"a read the parser accepted is in range"); /* ruled out */
+        return;
     }
     send_reply(b, f->addr, data, n);
 }
@@ -177,13 +180,15 @@ static void on_drop(void *ctx, xgo_drop_reason_t why, const uint8_t *bytes, size
 void xgo_board_init(xgo_board_t *b, const xgo_board_config_t *cfg)
 {
     xgo_parser_sink_t sink;
+    XGO_ASSERT(b != NULL);
+    XGO_ASSERT(cfg == NULL || (cfg->model <= XGO_MODEL_LITE && cfg->battery_pct <= 100));
     memset(b, 0, sizeof *b);
     if (cfg != NULL) {
         b->config = *cfg;
     } else {
         xgo_board_default_config(&b->config);
     }
-    if (b->config.battery_pct > 100) {
+    if (b->config.battery_pct > 100) { /* release builds: the documented clamp */
         b->config.battery_pct = 100;
     }
     sink.on_frame = on_frame;
@@ -207,6 +212,7 @@ void xgo_board_set_trace(xgo_board_t *b, xgo_trace_fn fn, void *ctx)
 
 void xgo_board_receive(xgo_board_t *b, const uint8_t *bytes, size_t n, uint32_t now_ms)
 {
+    XGO_ASSERT(bytes != NULL || n == 0);
     b->source = XGO_SOURCE_WIRE;
     xgo_parser_feed(&b->parser, bytes, n, now_ms);
 }
@@ -216,6 +222,7 @@ xgo_drop_reason_t xgo_board_write(xgo_board_t *b, uint8_t source, uint8_t addr,
 {
     xgo_frame_t f;
     xgo_drop_reason_t why;
+    XGO_ASSERT(data != NULL || n == 0);
     f.type = XGO_TYPE_WRITE;
     f.addr = addr;
     f.len = (uint8_t)(n <= XGO_FRAME_MAX_DATA ? n : 0u);
@@ -285,8 +292,10 @@ void xgo_board_push(xgo_board_t *b, int32_t roll_mdeg, int32_t pitch_mdeg)
 xgo_drop_reason_t xgo_board_read(const xgo_board_t *b, uint8_t addr, size_t n, uint8_t *out)
 {
     uint32_t counters[XGO_DIAG_COUNT];
-    const xgo_drop_reason_t why = xgo_regs_read(&b->regs, addr, n, out);
+    xgo_drop_reason_t why;
     size_t i;
+    XGO_ASSERT(out != NULL);
+    why = xgo_regs_read(&b->regs, addr, n, out);
     if (why != XGO_DROP_NONE) {
         return why;
     }
@@ -325,6 +334,7 @@ void xgo_board_joints_mdeg(const xgo_board_t *b, int32_t out[XGO_SERVO_COUNT])
 void xgo_board_joint_limits_mdeg(const xgo_board_t *b, unsigned joint, int32_t *lo, int32_t *hi)
 {
     const xgo_range_t *r = &b->motion.profile->joint_mdeg[joint % XGO_JOINT_COUNT];
+    XGO_ASSERT(joint < XGO_SERVO_COUNT);
     *lo = r->lo;
     *hi = r->hi;
 }

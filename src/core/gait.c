@@ -35,6 +35,7 @@
  * Integer arithmetic only. Positions are kept in 1/256 um so that slow
  * velocities integrate without rounding drift.
  */
+#include "check.h"
 #include "gait_internal.h"
 
 #include "fixed.h"
@@ -663,6 +664,7 @@ static void publish_tick(xgo_gait_t *g, const gait_tick_t *x)
 void xgo_gait_tick(xgo_gait_t *g, const xgo_gait_command_t *cmd)
 {
     gait_tick_t x;
+    XGO_ASSERT(g != NULL && cmd != NULL);
     g->ticks++;
     limit_command(cmd, &x);
     if (!start_or_stand(g, &x)) {

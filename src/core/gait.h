@@ -40,7 +40,7 @@
  * Input policy: every command value is expected input. Out-of-range gait
  * types and paces select the defaults (trot, normal); speeds are clamped to
  * twice the vendor ranges, mark-time height to XGO_GAIT_MAX_HEIGHT_UM.
- * Pointers must not be NULL (a caller bug, not checked).
+ * Pointers must not be NULL (a caller bug: XGO_ASSERT, src/core/check.h).
  *
  * Portable: C99, integer arithmetic only (xgo/fixed.h), no OS calls, no heap,
  * no globals. Cost (x86-64 -O2): ~1,250 instructions per tick walking

@@ -16,6 +16,8 @@
  * stopped turning the turn is done if the error is within
  * XGO_HEADING_TOLERANCE_MDEG, else it starts again from there.
  *
+ * Checks: none; every input value is handled (expected input).
+ *
  * Portable: no OS calls, no heap, no globals, no floating point.
  */
 #ifndef XGO_HEADING_H

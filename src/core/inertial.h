@@ -22,6 +22,8 @@
  * Both pass a first-order low-pass of time constant 4 ticks (8 ms at 500 Hz,
  * about 20 Hz: a sensor's digital low-pass filter) and saturate at int16.
  *
+ * Checks: none; every input value is handled (expected input).
+ *
  * Portable: no OS calls, no heap, no globals, no floating point.
  */
 #ifndef XGO_INERTIAL_H

@@ -6,6 +6,7 @@
 
 #include <string.h>
 
+#include "check.h"
 #include "codec.h"
 
 #define PERIODIC_AXES 6 /* roll, pitch, yaw, x, y, z */
@@ -138,7 +139,8 @@ static void apply_unload(xgo_motion_t *m, uint8_t v)
     xgo_unload_t u;
     uint16_t mask;
     if (!xgo_unload_decode(v, &u)) {
-        return; /* the register file accepts only the set */
+        XGO_ASSERT(!"the register file accepts only the unload set"); /* ruled out */
+        return;
     }
     mask = u.leg == XGO_UNLOAD_ALL_LEGS ? XGO_SERVO_ALL_MASK : XGO_SERVO_LEG_MASK(u.leg);
     if (u.load) {

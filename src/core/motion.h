@@ -12,6 +12,10 @@
  *   -> registers: mode 0x00, battery 0x01, joints 0x50..0x5B, action 0x3E,
  *      attitude 0x62..0x64
  *
+ * Checks: register values are expected input (the register file has
+ * validated every write); a value the file should have refused is a bug
+ * (XGO_ASSERT).
+ *
  * Portable: no OS calls, no heap, no globals, no floating point.
  */
 #ifndef XGO_MOTION_H

@@ -20,6 +20,8 @@
  *
  * Precision: positions accumulate in 1/256 um (int64), the heading as a
  * 32-bit binary angle, so neither drifts by rounding at low speeds.
+ * Checks: none; every input value is handled (expected input).
+ *
  * Portable: no OS calls, no heap, no globals, no floating point.
  */
 #ifndef XGO_ODOMETRY_H

@@ -13,6 +13,8 @@
 
 #include <string.h>
 
+#include "check.h"
+
 /* Positions inside a frame. */
 enum { POS_HEAD0 = 0, POS_HEAD1 = 1, POS_LEN = 2, POS_TYPE = 3, POS_ADDR = 4, POS_DATA = 5 };
 
@@ -264,6 +266,7 @@ void xgo_parser_hangup(xgo_parser_t *p)
 void xgo_parser_feed(xgo_parser_t *p, const uint8_t *bytes, size_t n, uint32_t now_ms)
 {
     size_t i;
+    XGO_ASSERT(bytes != NULL || n == 0);
     if (n == 0) {
         return;
     }

@@ -7,6 +7,9 @@
  * a host write is validated whole before anything changes and every refusal
  * is counted (expected input). The board side (motion core) sets and takes
  * registers without validation.
+ * Checks: host writes and reads are expected input (refused with a reason,
+ * counted); the board side's own calls are trusted (no checks).
+ *
  * Portable: no OS calls, no heap, no globals, no floating point.
  */
 #ifndef XGO_CORE_REGFILE_H

@@ -7,6 +7,7 @@
 
 #include <string.h>
 
+#include "check.h"
 #include "codec.h"
 #include "regfile.h"
 
@@ -65,6 +66,7 @@ int xgo_reg_value_valid(const xgo_reg_desc_t *d, uint8_t v)
     case XGO_VALID_ACTION: return v <= XGO_ACTION_LAST || v == XGO_ACTION_RESET;
     case XGO_VALID_ASCII: return v >= 0x20 && v <= 0x7E;
     }
+    XGO_ASSERT(!"a valid set of the table"); /* the table uses only the sets above */
     return 0;
 }
 

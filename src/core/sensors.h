@@ -12,6 +12,9 @@
  * charge in whole percent, rounded up, so a full battery reads 100 until
  * one percent has gone.
  *
+ * Checks: none assert; a battery level over 100 is clamped (the board
+ * asserts on it in its config, xgo/board.h), tilts and shoves are clamped.
+ *
  * Portable: no OS calls, no heap, no globals, no floating point.
  */
 #ifndef XGO_SENSORS_H

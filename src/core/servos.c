@@ -5,6 +5,8 @@
 
 #include <string.h>
 
+#include "check.h"
+
 static int32_t clamp_joint(const xgo_servos_t *s, unsigned i, int32_t mdeg)
 {
     const xgo_range_t *r = &s->profile->joint_mdeg[i % XGO_JOINT_COUNT];
@@ -99,5 +101,6 @@ void xgo_servos_record_zero(xgo_servos_t *s)
 
 int32_t xgo_servos_raw(const xgo_servos_t *s, unsigned joint)
 {
+    XGO_ASSERT(joint < XGO_SERVO_COUNT);
     return joint < XGO_SERVO_COUNT ? s->angle_mdeg[joint] + s->zero_offset_mdeg[joint] : 0;
 }

@@ -12,6 +12,10 @@
  *
  * Joint order everywhere: index = 3 * leg + joint (profile.h), i.e. register
  * order 0x50..0x5B. Angles in millidegrees.
+ * Checks: targets and steps of any value are clamped (expected); a joint
+ * index past 11 for xgo_servos_raw is a caller bug (XGO_ASSERT; released:
+ * 0).
+ *
  * Portable: no OS calls, no heap, no globals, no floating point.
  */
 #ifndef XGO_SERVOS_H

@@ -18,7 +18,9 @@
  * instruction counts (measure.h), printed on the MCU only. Exit status 0 when
  * every check passes; a distinct code per failed check otherwise (startup.c
  * has the fault codes). Built with -DMCU_SELFTEST_FAULT it faults at once on
- * purpose (run.sh checks the HardFault exit).
+ * purpose (run.sh checks the HardFault exit); built with the core's checks on
+ * and -DMCU_SELFTEST_ASSERT it makes a caller's mistake on purpose, which the
+ * core's XGO_ASSERT reports through this program's hook (exit 19).
  */
 #include <stddef.h>
 #include <stdint.h>
@@ -39,6 +41,8 @@
 #define FAIL_INTERVAL 16
 #define FAIL_COUNTERS 17
 #define FAIL_ACTION 18
+#define FAIL_ASSERT 19        /* a core check failed (xgo_assert_failed) */
+#define FAIL_ASSERT_MISSED 20 /* a caller bug went through unnoticed */
 
 #define WARMUP_TICKS 1000u
 #define MEASURED_TICKS 1000u
@@ -143,6 +147,26 @@ static void fail(int code, const char *what)
     l_end(&l);
     sh_exit(code);
 }
+
+/* ---- the core's checks ---------------------------------------------------- */
+
+#if XGO_ASSERT_ENABLED
+/* The hook a microcontroller port gives the core's checks (xgo/config.h):
+ * say which check failed over the debug channel and stop. A product would
+ * log it and reset; it must not return into the core. */
+void xgo_assert_failed(const char *file, int line, const char *expr)
+{
+    line_t l;
+    l_begin(&l, "ASSERT ");
+    l_str(&l, file);
+    l_char(&l, ':');
+    l_u32(&l, (uint32_t)line);
+    l_str(&l, ": ");
+    l_str(&l, expr);
+    l_end(&l);
+    sh_exit(FAIL_ASSERT);
+}
+#endif
 
 /* ---- digest: FNV-1a 32 ---------------------------------------------------- */
 
@@ -698,6 +722,14 @@ int main(void)
      * (on a Cortex-M3 an escalated UsageFault); startup.c reports it and
      * exits with 91. */
     __asm__ volatile("udf #0");
+#endif
+#ifdef MCU_SELFTEST_ASSERT
+    {   /* joint 12 does not exist: a caller's bug, not bad input */
+        int32_t lo, hi;
+        xgo_board_init(&board, NULL);
+        xgo_board_joint_limits_mdeg(&board, XGO_SERVO_COUNT, &lo, &hi);
+        fail(FAIL_ASSERT_MISSED, "joint 12 went unnoticed");
+    }
 #endif
     counting = mcu_count_start();
     calibrate();

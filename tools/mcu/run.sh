@@ -28,8 +28,12 @@ case "$target" in
   m3) cpu=(-mcpu=cortex-m3 -mthumb); defs=(-DMCU_MPS2_AN385); machine=mps2-an385; shift=7 ;;
   *) echo "XGO_MCU_TARGET must be m0 or m3" >&2; exit 2 ;;
 esac
+# The measured image is built as a firmware would ship: the core's checks
+# compiled out (MinSizeRel has NDEBUG); a second image turns them on to show
+# the hook working.
 armflags=("${cpu[@]}" "$opt" "${defs[@]}" -g -ffreestanding -ffunction-sections -fdata-sections
   -Iinclude -Isrc/core -Itest/support -I"$mcu")
+nochecks=(-DXGO_ASSERT_ENABLED=0)
 
 echo "== build: bare-metal image (arm-none-eabi-gcc ${cpu[*]} $opt -ffreestanding -nostdlib)"
 objs=()
@@ -39,10 +43,15 @@ core_srcs=()
 for src in src/core/*.c; do
   [ "$src" = src/core/device.c ] || core_srcs+=("$src")
 done
+mkdir -p "$out/obj-checks"
+checked=()
 for src in "${core_srcs[@]}"; do
   obj="$out/obj/core_$(basename "${src%.c}").o"
-  arm-none-eabi-gcc "${warn[@]}" "${armflags[@]}" -c "$src" -o "$obj"
+  arm-none-eabi-gcc "${warn[@]}" "${armflags[@]}" "${nochecks[@]}" -c "$src" -o "$obj"
   objs+=("$obj")
+  obj="$out/obj-checks/core_$(basename "${src%.c}").o"
+  arm-none-eabi-gcc "${warn[@]}" "${armflags[@]}" -DXGO_ASSERT_ENABLED=1 -c "$src" -o "$obj"
+  checked+=("$obj")
 done
 for name in measure semihost startup; do
   arm-none-eabi-gcc "${warn[@]}" "${armflags[@]}" -c "$mcu/$name.c" -o "$out/obj/$name.o"
@@ -55,21 +64,29 @@ arm-none-eabi-gcc "${warn[@]}" "${armflags[@]}" -fno-tree-loop-distribute-patter
   -c ports/cortex-m/libc_min.c -o "$out/obj/libc_min.o"
 arm-none-eabi-gcc "${cpu[@]}" -c "$mcu/measure.S" -o "$out/obj/measure_s.o"
 objs+=("$out/obj/libc_min.o" "$out/obj/measure_s.o")
-link() { # link ELF MAIN_OBJECT
+link() { # link ELF MAIN_OBJECT [CORE_OBJECTS...]: default, the measured core
+  local elf=$1 main=$2
+  shift 2
+  if [ $# -eq 0 ]; then set -- "${objs[@]}"; else set -- "$@" "${objs[@]:${#core_srcs[@]}}"; fi
   arm-none-eabi-gcc "${cpu[@]}" -nostdlib -nostartfiles -T "$mcu/link.ld" -Wl,--gc-sections \
-    -Wl,-Map="${1%.elf}.map" "$2" "${objs[@]}" -lgcc -o "$1"
+    -Wl,-Map="${elf%.elf}.map" "$main" "$@" -lgcc -o "$elf"
 }
-arm-none-eabi-gcc "${warn[@]}" "${armflags[@]}" -c "$mcu/mcu_selftest.c" -o "$out/obj/mcu_selftest.o"
+arm-none-eabi-gcc "${warn[@]}" "${armflags[@]}" "${nochecks[@]}" -c "$mcu/mcu_selftest.c" \
+  -o "$out/obj/mcu_selftest.o"
 elf="$out/mcu_selftest.elf"
 link "$elf" "$out/obj/mcu_selftest.o"
 # The same program faulting on purpose: checks the fault handlers' exit.
-arm-none-eabi-gcc "${warn[@]}" "${armflags[@]}" -DMCU_SELFTEST_FAULT -c "$mcu/mcu_selftest.c" \
-  -o "$out/obj/mcu_selftest_fault.o"
+arm-none-eabi-gcc "${warn[@]}" "${armflags[@]}" "${nochecks[@]}" -DMCU_SELFTEST_FAULT \
+  -c "$mcu/mcu_selftest.c" -o "$out/obj/mcu_selftest_fault.o"
 link "$out/mcu_fault.elf" "$out/obj/mcu_selftest_fault.o"
+# The core with its checks on, and a caller's bug on purpose: the hook reports.
+arm-none-eabi-gcc "${warn[@]}" "${armflags[@]}" -DXGO_ASSERT_ENABLED=1 -DMCU_SELFTEST_ASSERT \
+  -c "$mcu/mcu_selftest.c" -o "$out/obj-checks/mcu_selftest_assert.o"
+link "$out/mcu_assert.elf" "$out/obj-checks/mcu_selftest_assert.o" "${checked[@]}"
 
 echo "== build: host variant (gcc -O2)"
 host="$out/mcu_selftest_host"
-gcc "${warn[@]}" -O2 -Iinclude -Isrc/core -Itest/support -I"$mcu" "$mcu/mcu_selftest.c" "$mcu/host_port.c" \
+gcc "${warn[@]}" -O2 "${nochecks[@]}" -Iinclude -Isrc/core -Itest/support -I"$mcu" "$mcu/mcu_selftest.c" "$mcu/host_port.c" \
   test/support/board_io.c "${core_srcs[@]}" -o "$host"
 
 echo "== sizes"
@@ -127,6 +144,17 @@ set -e
 cat "$out/mcu_fault.out"; echo
 if [ "$rc" -ne 91 ] || ! grep -q 'FAULT HardFault pc=' "$out/mcu_fault.out"; then
   echo "FAIL: the fault handler did not report and exit with 91 (got $rc)"
+  exit 1
+fi
+
+echo "== run: a caller's bug on purpose, the core's checks on (expects exit 19 and the check)"
+set +e
+qemu "$out/mcu_assert.elf" >"$out/mcu_assert.out" 2>&1
+rc=$?
+set -e
+cat "$out/mcu_assert.out"
+if [ "$rc" -ne 19 ] || ! grep -q '^ASSERT .*board\.c:[0-9]*: joint < XGO_SERVO_COUNT' "$out/mcu_assert.out"; then
+  echo "FAIL: the core's check did not reach the port's hook (got $rc)"
   exit 1
 fi
 
