@@ -106,6 +106,33 @@ static void xgo_host_loop_set_trace_time(xgo_host_loop_t *l, uint64_t now_us)
     }
 }
 
+static void xgo_host_loop_note_lateness(xgo_host_loop_t *l, uint64_t late_us)
+{
+    uint64_t bucket = late_us / XGO_HOST_LATE_BUCKET_US;
+    l->late_hist[bucket < XGO_HOST_LATE_BUCKETS ? bucket : XGO_HOST_LATE_BUCKETS - 1]++;
+    if (late_us > l->late_max_us) {
+        l->late_max_us = late_us;
+    }
+}
+
+/* The lateness below which fraction per_mille of the rounds began, in us
+ * (bucket upper bound). */
+static uint64_t xgo_host_loop_lateness(const xgo_host_loop_t *l, unsigned per_mille)
+{
+    uint64_t total = 0, seen = 0;
+    size_t i;
+    for (i = 0; i < XGO_HOST_LATE_BUCKETS; i++) {
+        total += l->late_hist[i];
+    }
+    for (i = 0; i < XGO_HOST_LATE_BUCKETS && total > 0; i++) {
+        seen += l->late_hist[i];
+        if (seen * 1000u >= total * per_mille) {
+            return (uint64_t)(i + 1) * XGO_HOST_LATE_BUCKET_US;
+        }
+    }
+    return 0;
+}
+
 static void xgo_host_loop_run_ticks(xgo_host_loop_t *l, uint64_t now_us)
 {
     uint64_t due;
@@ -113,6 +140,7 @@ static void xgo_host_loop_run_ticks(xgo_host_loop_t *l, uint64_t now_us)
     if (now_us < l->next_tick_us) {
         return;
     }
+    xgo_host_loop_note_lateness(l, now_us - l->next_tick_us);
     due = (now_us - l->next_tick_us) / XGO_HOST_TICK_US + 1;
     if (due > XGO_HOST_MAX_CATCHUP_TICKS) {
         l->counters.ticks_skipped += due - XGO_HOST_MAX_CATCHUP_TICKS;
@@ -548,4 +576,7 @@ void xgo_host_loop_print_counters(const xgo_host_loop_t *l, FILE *out)
     fprintf(out, "  %-22s %llu\n", "host_write_stalls", (unsigned long long)c->write_stalls);
     fprintf(out, "  %-22s %llu\n", "ticks", (unsigned long long)c->ticks);
     fprintf(out, "  %-22s %llu\n", "ticks_skipped", (unsigned long long)c->ticks_skipped);
+    fprintf(out, "  %-22s %llu\n", "tick_late_p50_us", (unsigned long long)xgo_host_loop_lateness(l, 500));
+    fprintf(out, "  %-22s %llu\n", "tick_late_p99_us", (unsigned long long)xgo_host_loop_lateness(l, 990));
+    fprintf(out, "  %-22s %llu\n", "tick_late_max_us", (unsigned long long)l->late_max_us);
 }

@@ -55,6 +55,11 @@ typedef struct xgo_host_service_s {
     void *ctx;
 } xgo_host_service_t;
 
+/* Tick lateness (how long after its time a round of ticks began), kept for
+ * the counters at exit (bench figures): 10 us buckets up to 10 ms. */
+#define XGO_HOST_LATE_BUCKET_US 10u
+#define XGO_HOST_LATE_BUCKETS 1001u /* the last one: later than that */
+
 #define XGO_HOST_MAX_SERVICES 4u
 #define XGO_HOST_MAX_SERVICE_FDS 32u
 
@@ -89,6 +94,9 @@ typedef struct xgo_host_loop_s {
 
     uint64_t next_tick_us;
     xgo_host_counters_t counters;
+
+    uint32_t late_hist[XGO_HOST_LATE_BUCKETS];
+    uint64_t late_max_us;
 
     const xgo_host_service_t *services[XGO_HOST_MAX_SERVICES];
     size_t service_count;
