@@ -98,6 +98,17 @@ static void test_writer_escapes_strings(void)
     TEST_ASSERT_EQUAL_STRING("\"a\\u0000b\"", g_buf);
 }
 
+static void test_writer_places_prewritten_values(void)
+{
+    begin(sizeof g_buf);
+    xgo_host_json_array_begin(&g_w);
+    xgo_host_json_value_text(&g_w, "{\"a\":1}", 7);
+    xgo_host_json_value_text(&g_w, "[2]", 3);
+    xgo_host_json_array_end(&g_w);
+    TEST_ASSERT_TRUE(xgo_host_json_ok(&g_w));
+    TEST_ASSERT_EQUAL_STRING("[{\"a\":1},[2]]", g_buf);
+}
+
 static void test_writer_hex(void)
 {
     static const uint8_t k_bytes[] = {0x55, 0x00, 0xAA, 0x0F};
@@ -359,6 +370,7 @@ int main(void)
     RUN_TEST(test_writer_extreme_integers);
     RUN_TEST(test_writer_fixed_point_rounds_half_away_from_zero);
     RUN_TEST(test_writer_escapes_strings);
+    RUN_TEST(test_writer_places_prewritten_values);
     RUN_TEST(test_writer_hex);
     RUN_TEST(test_writer_never_writes_past_its_buffer);
     RUN_TEST(test_writer_rejects_unbalanced_use);

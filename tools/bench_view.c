@@ -5,11 +5,14 @@
  *    servo read) and tick lateness (xgo-emu's counters at exit: how late
  *    each round of control ticks began) with --view and no view client,
  *    then with 4 clients reading /events at the default 30 Hz. The two runs
- *    alternate ROUNDS times so machine load hits both alike.
+ *    alternate ROUNDS times (ABBA order) so machine load hits both alike.
+ *    Also the view server's own work per loop turn (view_busy_*): the most
+ *    it can hold back a pty byte or a tick, free of scheduling noise.
  * 2. xgo-emu's CPU share over 5 s: without --view, and with --view and one
  *    client reading /events (the host idle, then walking at full speed).
  *
- * usage: bench_view [REQUESTS [ROUNDS]]   (default 5000 requests, 3 rounds)
+ * usage: bench_view [REQUESTS [ROUNDS [HZ]]]
+ *        (default 5000 requests, 3 rounds, --view-hz 30)
  * Prints numbers; never fails on timing. Exits 1 if the emulator does not
  * answer at all.
  */
@@ -46,6 +49,7 @@ typedef struct run_s {
 } run_t;
 
 static run_t g_run;
+static const char *g_hz = "30"; /* --view-hz of the latency runs */
 
 /* Starts xgo-emu with args (NULL-terminated), stderr to a file (its
  * counters at exit), opens the pty like pyserial; port from stdout. */
@@ -145,14 +149,16 @@ static int cmp_double(const void *a, const void *b)
 typedef struct figures_s {
     double p50, p99;
     long late_p50, late_p99;
+    long busy_p99, busy_max; /* the view's own work per loop turn */
 } figures_t;
 
 /* One run: xgo-emu --view 0 with `clients` event streams; n round trips. */
 static int measure(int clients, size_t n, double *lat, figures_t *out)
 {
-    static const char *const k_args[] = {"--view", "0", NULL};
+    const char *args[5] = {"--view", "0", "--view-hz", NULL, NULL};
     size_t i;
-    if (run_start(&g_run, k_args) != 0 ||
+    args[3] = g_hz;
+    if (run_start(&g_run, args) != 0 ||
         (clients > 0 && run_attach_clients(&g_run, clients) != 0)) {
         fprintf(stderr, "bench_view: cannot start %s with %d clients\n", XGO_EMU_PATH, clients);
         return -1;
@@ -175,6 +181,8 @@ static int measure(int clients, size_t n, double *lat, figures_t *out)
         const char *text = run_stop(&g_run);
         out->late_p50 = counter(text, "tick_late_p50_us");
         out->late_p99 = counter(text, "tick_late_p99_us");
+        out->busy_p99 = counter(text, "view_busy_p99_us");
+        out->busy_max = counter(text, "view_busy_max_us");
     }
     return 0;
 }
@@ -219,30 +227,35 @@ int main(int argc, char **argv)
 {
     size_t n = argc > 1 ? (size_t)strtoul(argv[1], NULL, 10) : 5000;
     int rounds = argc > 2 ? atoi(argv[2]) : 3;
+    g_hz = argc > 3 ? argv[3] : g_hz;
     double *lat;
     int r;
     signal(SIGPIPE, SIG_IGN);
     if (n == 0 || rounds <= 0) {
-        fprintf(stderr, "usage: bench_view [REQUESTS [ROUNDS]]\n");
+        fprintf(stderr, "usage: bench_view [REQUESTS [ROUNDS [HZ]]]\n");
         return 2;
     }
     lat = malloc(n * sizeof *lat);
     if (lat == NULL) {
         return 1;
     }
-    printf("bench_view: pty reply latency and tick lateness, xgo-emu --view, %lu requests a run\n",
-           (unsigned long)n);
+    printf("bench_view: pty reply latency and tick lateness, xgo-emu --view 0 --view-hz %s, "
+           "%lu requests a run\n",
+           g_hz, (unsigned long)n);
     for (r = 0; r < rounds; r++) {
-        int clients;
-        for (clients = 0; clients <= MAX_CLIENTS; clients += MAX_CLIENTS) {
+        int k;
+        for (k = 0; k < 2; k++) {
+            /* 0 then 4 clients, then 4 then 0: load drifting over time hits
+             * both alike */
+            int clients = (k == (r % 2)) ? 0 : MAX_CLIENTS;
             figures_t f;
             if (measure(clients, n, lat, &f) != 0) {
                 free(lat);
                 return 1;
             }
-            printf("  round %d, %d view clients: reply p50 %7.1f us  p99 %7.1f us   "
-                   "tick lateness p50 %4ld us  p99 %5ld us\n",
-                   r + 1, clients, f.p50, f.p99, f.late_p50, f.late_p99);
+            printf("  round %d, %d view clients: reply p50 %6.1f us  p99 %7.1f us   "
+                   "tick lateness p50 %4ld us  p99 %5ld us   view work/turn p99 %3ld us  max %5ld us\n",
+                   r + 1, clients, f.p50, f.p99, f.late_p50, f.late_p99, f.busy_p99, f.busy_max);
         }
     }
     free(lat);

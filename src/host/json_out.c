@@ -245,6 +245,12 @@ void xgo_host_json_hex(xgo_host_json_t *w, const uint8_t *bytes, size_t n)
     xgo_host_json_char(w, '"');
 }
 
+void xgo_host_json_value_text(xgo_host_json_t *w, const char *text, size_t n)
+{
+    xgo_host_json_separate(w);
+    xgo_host_json_raw(w, text, n);
+}
+
 int xgo_host_json_ok(const xgo_host_json_t *w)
 {
     return !w->overflow && w->depth == 0 && !w->after_key && w->len > 0;

@@ -70,6 +70,10 @@ void xgo_host_json_string_n(xgo_host_json_t *w, const char *s, size_t n);
 /* n bytes as a string of 2n upper-case hex digits ("55AA00"). */
 void xgo_host_json_hex(xgo_host_json_t *w, const uint8_t *bytes, size_t n);
 
+/* n bytes of text that already are one complete JSON value (written by
+ * another writer earlier, e.g. a cached object), placed as the next value. */
+void xgo_host_json_value_text(xgo_host_json_t *w, const char *text, size_t n);
+
 /* True when the text is complete: every container closed, nothing cut. */
 int xgo_host_json_ok(const xgo_host_json_t *w);
 

@@ -204,6 +204,13 @@ static void xgo_host_loop_tap(xgo_host_loop_t *l, int what, const uint8_t *bytes
     }
 }
 
+int xgo_host_loop_pty_waiting(const xgo_host_loop_t *l)
+{
+    int unread = 0;
+    return !l->host_gone && l->in_len == 0 && ioctl(l->pty->master_fd, FIONREAD, &unread) == 0 &&
+           unread > 0;
+}
+
 /* Replies for a host that has gone are dropped, as on a real wire. */
 static void xgo_host_loop_discard_replies(xgo_host_loop_t *l)
 {

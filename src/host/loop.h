@@ -124,6 +124,10 @@ int xgo_host_loop_add_service(xgo_host_loop_t *l, const xgo_host_service_t *s);
 /* 1 while a host has the pty open (as far as the loop has seen). */
 int xgo_host_loop_host_attached(const xgo_host_loop_t *l);
 
+/* 1 if host bytes are waiting that the loop would read at once: a service
+ * doing long work stops and lets the next turn serve them first. */
+int xgo_host_loop_pty_waiting(const xgo_host_loop_t *l);
+
 /* Serves until *stop becomes non-zero. Returns 0, or -1 if poll() fails for
  * a reason other than a signal (message on stderr). */
 int xgo_host_loop_run(xgo_host_loop_t *l);

@@ -32,7 +32,7 @@ static void xgo_host_view_frames_copy(xgo_host_view_frame_t *e, const xgo_trace_
         e->raw_len = (uint16_t)(ev->raw_len < sizeof e->raw ? ev->raw_len : sizeof e->raw);
         memcpy(e->raw, ev->raw, e->raw_len);
     }
-    e->decoded = 0;
+    e->json_len = 0;
 }
 
 void xgo_host_view_frames_event(void *ctx, const xgo_trace_event_t *ev)
@@ -52,8 +52,7 @@ uint64_t xgo_host_view_frames_oldest(const xgo_host_view_frames_t *f)
     return f->next_seq > XGO_HOST_VIEW_FRAME_RING ? f->next_seq - XGO_HOST_VIEW_FRAME_RING : 0;
 }
 
-/* The --trace line of a held event, without its time column. */
-static void xgo_host_view_frames_decode(xgo_host_view_frame_t *e)
+void xgo_host_view_frame_text(const xgo_host_view_frame_t *e, char *text)
 {
     static const char k_more[] = "...";
     char line[4096]; /* a 255-byte frame in hex plus its decoding */
@@ -86,23 +85,18 @@ static void xgo_host_view_frames_decode(xgo_host_view_frame_t *e)
     p += strcspn(p, " ");
     p += strspn(p, " ");
     n = strlen(p);
-    if (n >= sizeof e->text) {
-        n = sizeof e->text - sizeof k_more;
-        memcpy(e->text + n, k_more, sizeof k_more);
+    if (n >= XGO_HOST_VIEW_FRAME_TEXT) {
+        n = XGO_HOST_VIEW_FRAME_TEXT - sizeof k_more;
+        memcpy(text + n, k_more, sizeof k_more);
     } else {
-        e->text[n] = '\0';
+        text[n] = '\0';
     }
-    memcpy(e->text, p, n);
-    e->decoded = 1;
+    memcpy(text, p, n);
 }
 
-const xgo_host_view_frame_t *xgo_host_view_frames_get(xgo_host_view_frames_t *f, uint64_t seq)
+xgo_host_view_frame_t *xgo_host_view_frames_get(xgo_host_view_frames_t *f, uint64_t seq)
 {
-    xgo_host_view_frame_t *e = &f->ring[seq % XGO_HOST_VIEW_FRAME_RING];
-    if (!e->decoded) {
-        xgo_host_view_frames_decode(e);
-    }
-    return e;
+    return &f->ring[seq % XGO_HOST_VIEW_FRAME_RING];
 }
 
 const char *xgo_host_view_frame_kind_name(uint8_t kind)

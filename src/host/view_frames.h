@@ -6,7 +6,9 @@
  * Installed as the board's trace function; it passes every event on to the
  * --trace output too (when that is on), so one board has two observers.
  * Recording an event costs a copy of its bytes, nothing more: the pty's
- * replies are never delayed by decoding for the view.
+ * replies are never delayed by decoding for the view. Each entry has room
+ * for its rendering as a JSON object (view_state.c fills it once, every
+ * client then copies it).
  */
 #ifndef XGO_HOST_VIEW_FRAMES_H
 #define XGO_HOST_VIEW_FRAMES_H
@@ -23,6 +25,9 @@
 /* Longest decoded line kept for the view, NUL included; longer ones end
  * in "...". */
 #define XGO_HOST_VIEW_FRAME_TEXT 512u
+/* Room for an entry's JSON object: the text (escaped quotes at most
+ * double a few characters) plus the other fields. */
+#define XGO_HOST_VIEW_FRAME_JSON 768u
 
 typedef struct xgo_host_view_frame_s {
     uint32_t t_ms;   /* board time (xgo_board_time_ms) when it happened */
@@ -37,8 +42,8 @@ typedef struct xgo_host_view_frame_s {
     uint8_t frame_data[XGO_FRAME_MAX_DATA];
     uint16_t raw_len;
     uint8_t raw[XGO_FRAME_MAX_LEN];
-    int decoded; /* text is filled */
-    char text[XGO_HOST_VIEW_FRAME_TEXT];
+    uint16_t json_len; /* 0 until the JSON object below is rendered */
+    char json[XGO_HOST_VIEW_FRAME_JSON];
 } xgo_host_view_frame_t;
 
 typedef struct xgo_host_view_frames_s {
@@ -58,9 +63,13 @@ void xgo_host_view_frames_event(void *ctx, const xgo_trace_event_t *ev);
 /* Sequence numbers still held: [oldest, f->next_seq). */
 uint64_t xgo_host_view_frames_oldest(const xgo_host_view_frames_t *f);
 
-/* The event with sequence number seq (must be held), its --trace line
- * (without the time column) decoded on first use. */
-const xgo_host_view_frame_t *xgo_host_view_frames_get(xgo_host_view_frames_t *f, uint64_t seq);
+/* The event with sequence number seq (must be held). */
+xgo_host_view_frame_t *xgo_host_view_frames_get(xgo_host_view_frames_t *f, uint64_t seq);
+
+/* Its --trace line without the time column and the rx/tx/drop word,
+ * decoded by the --trace formatter into text (at most
+ * XGO_HOST_VIEW_FRAME_TEXT bytes; a longer line ends in "..."). */
+void xgo_host_view_frame_text(const xgo_host_view_frame_t *e, char *text);
 
 /* "rx", "tx", "drop" and "wire", "view", "cli". */
 const char *xgo_host_view_frame_kind_name(uint8_t kind);

@@ -75,10 +75,11 @@ void xgo_host_view_answer_error(xgo_host_view_t *v, xgo_host_view_client_t *c, i
 
 /* ------------------------------------------------------------ state */
 
-void xgo_host_view_begin_object(xgo_host_view_t *v, xgo_host_json_t *prefix)
+void xgo_host_view_begin_object(xgo_host_view_t *v, xgo_host_json_t *prefix, char *buf,
+                                size_t size)
 {
     v->seq++;
-    xgo_host_json_init(prefix, v->object, sizeof v->object);
+    xgo_host_json_init(prefix, buf, size);
     xgo_host_view_state_open(prefix, v->board, v->seq, xgo_host_loop_host_attached(v->loop),
                              v->profile->name);
 }
@@ -104,7 +105,7 @@ static void xgo_host_view_get_state(xgo_host_view_t *v, xgo_host_view_client_t *
     xgo_host_json_t w;
     uint64_t cursor = xgo_host_view_state_first_cursor(&v->frames);
     (void)now_us;
-    xgo_host_view_begin_object(v, &w);
+    xgo_host_view_begin_object(v, &w, v->object, sizeof v->object);
     xgo_host_view_state_close(&w, &v->frames, &cursor);
     xgo_host_view_answer_json(v, c, 200, &w, req->keep_alive, "");
 }
@@ -136,7 +137,7 @@ static void xgo_host_view_get_events(xgo_host_view_t *v, xgo_host_view_client_t 
     v->counters.requests++;
     c->state = XGO_HOST_VIEW_STREAMING;
     c->frame_cursor = xgo_host_view_state_first_cursor(&v->frames);
-    xgo_host_view_begin_object(v, &prefix);
+    xgo_host_view_begin_object(v, &prefix, v->object, sizeof v->object);
     (void)xgo_host_view_send_event(v, c, &prefix); /* an empty buffer takes one */
 }
 

@@ -24,10 +24,11 @@ void xgo_host_view_route(xgo_host_view_t *v, xgo_host_view_client_t *c,
 void xgo_host_view_answer_error(xgo_host_view_t *v, xgo_host_view_client_t *c, int status,
                                 const char *why, int keep_alive);
 
-/* Writes the members every state object of this period shares into v->object
- * (builds a new object: v->seq grows). The writer is then handed to
+/* Writes the members every client's copy of a state object shares into buf
+ * (a new object: v->seq grows). The writer is then handed to
  * xgo_host_view_send_event once per client. */
-void xgo_host_view_begin_object(xgo_host_view_t *v, xgo_host_json_t *prefix);
+void xgo_host_view_begin_object(xgo_host_view_t *v, xgo_host_json_t *prefix, char *buf,
+                                size_t size);
 
 /* Queues one SSE event for c: the shared members plus c's frames. -1 if
  * its output buffer cannot take it (the client has fallen behind). */

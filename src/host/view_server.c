@@ -18,6 +18,7 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include "clock.h"
 #include "net.h"
 #include "view_routes.h"
 
@@ -257,32 +258,55 @@ static void xgo_host_view_linger(xgo_host_view_client_t *c, uint64_t now_us)
 
 /* ------------------------------------------------------------ events */
 
-/* One state object per period for every streaming client; a client whose
- * output buffer cannot take it has fallen behind and is dropped. */
-static void xgo_host_view_emit(xgo_host_view_t *v, uint64_t now_us)
+/* Frames rendered to JSON per step of an event's sending (~2 us each). */
+#define XGO_HOST_VIEW_RENDER_STEP 8u
+
+/* Starts the period's event when it is due: the shared members now, the
+ * clients to send it to. */
+static void xgo_host_view_start_event(xgo_host_view_t *v, uint64_t now_us)
 {
-    xgo_host_json_t prefix;
     size_t i;
-    int any = 0;
-    if (now_us < v->next_event_us) {
-        return;
+    if (v->event_todo != 0 || now_us < v->next_event_us) {
+        return; /* the last one is still going out, or not due */
     }
     v->next_event_us += v->period_us;
     if (v->next_event_us <= now_us) {
         v->next_event_us = now_us + v->period_us; /* after a stall: no burst */
     }
     for (i = 0; i < XGO_HOST_VIEW_MAX_CLIENTS; i++) {
-        any |= v->clients[i].state == XGO_HOST_VIEW_STREAMING;
+        if (v->clients[i].state == XGO_HOST_VIEW_STREAMING) {
+            v->event_todo |= 1u << i;
+        }
     }
-    if (!any) {
-        return;
+    if (v->event_todo != 0) {
+        xgo_host_view_begin_object(v, &v->event_prefix, v->event_object, sizeof v->event_object);
     }
-    xgo_host_view_begin_object(v, &prefix);
-    for (i = 0; i < XGO_HOST_VIEW_MAX_CLIENTS; i++) {
-        xgo_host_view_client_t *c = &v->clients[i];
-        if (c->state == XGO_HOST_VIEW_STREAMING && xgo_host_view_send_event(v, c, &prefix) != 0) {
-            v->counters.clients_dropped++;
-            xgo_host_view_drop(c);
+}
+
+/* Sends the period's event in steps (render a few frames, or one client's
+ * copy), stopping between steps as soon as host bytes wait on the pty: the
+ * next turn serves them first and this goes on after. One step always runs,
+ * so the event is never starved. A client whose output cannot take its copy
+ * has fallen behind and is dropped. */
+static void xgo_host_view_send_events(xgo_host_view_t *v)
+{
+    while (v->event_todo != 0) {
+        if (xgo_host_view_state_render(&v->frames, XGO_HOST_VIEW_RENDER_STEP) == 0) {
+            unsigned i = 0;
+            xgo_host_view_client_t *c;
+            while (!(v->event_todo & (1u << i))) {
+                i++;
+            }
+            v->event_todo &= ~(1u << i);
+            c = &v->clients[i];
+            if (c->state == XGO_HOST_VIEW_STREAMING &&
+                xgo_host_view_send_event(v, c, &v->event_prefix) != 0) {
+                v->counters.clients_dropped++;
+                xgo_host_view_drop(c);
+            }
+        }
+        if (xgo_host_loop_pty_waiting(v->loop)) {
+            return;
         }
     }
 }
@@ -358,14 +382,42 @@ static void xgo_host_view_serve_client(xgo_host_view_t *v, xgo_host_view_client_
     xgo_host_view_expire(v, c, now_us);
 }
 
-static void xgo_host_view_serve(void *ctx, const struct pollfd *fds, size_t n, uint64_t now_us)
+static void xgo_host_view_note_busy(xgo_host_view_t *v, uint64_t busy_us)
 {
-    xgo_host_view_t *v = ctx;
+    uint64_t bucket = busy_us / XGO_HOST_VIEW_BUSY_BUCKET_US;
+    v->busy_hist[bucket < XGO_HOST_VIEW_BUSY_BUCKETS ? bucket : XGO_HOST_VIEW_BUSY_BUCKETS - 1]++;
+    if (busy_us > v->busy_max_us) {
+        v->busy_max_us = busy_us;
+    }
+}
+
+/* Turns with work, the time below which per_mille of them ended, in us. */
+static uint64_t xgo_host_view_busy(const xgo_host_view_t *v, unsigned per_mille)
+{
+    uint64_t total = 0, seen = 0;
+    size_t i;
+    for (i = 0; i < XGO_HOST_VIEW_BUSY_BUCKETS; i++) {
+        total += v->busy_hist[i];
+    }
+    for (i = 0; i < XGO_HOST_VIEW_BUSY_BUCKETS && total > 0; i++) {
+        seen += v->busy_hist[i];
+        if (seen * 1000u >= total * per_mille) {
+            return (uint64_t)(i + 1) * XGO_HOST_VIEW_BUSY_BUCKET_US;
+        }
+    }
+    return 0;
+}
+
+/* One turn's work: new connections, the event due, then every client. */
+static void xgo_host_view_serve_turn(xgo_host_view_t *v, const struct pollfd *fds, size_t n,
+                                     uint64_t now_us)
+{
     size_t i;
     if (n > 0 && (fds[0].revents & POLLIN)) {
         xgo_host_view_accept(v, now_us);
     }
-    xgo_host_view_emit(v, now_us);
+    xgo_host_view_start_event(v, now_us);
+    xgo_host_view_send_events(v);
     for (i = 0; i < XGO_HOST_VIEW_MAX_CLIENTS; i++) {
         xgo_host_view_client_t *c = &v->clients[i];
         short revents = 0;
@@ -380,6 +432,14 @@ static void xgo_host_view_serve(void *ctx, const struct pollfd *fds, size_t n, u
         }
         xgo_host_view_serve_client(v, c, revents, now_us);
     }
+}
+
+static void xgo_host_view_serve(void *ctx, const struct pollfd *fds, size_t n, uint64_t now_us)
+{
+    xgo_host_view_t *v = ctx;
+    uint64_t start_us = xgo_host_clock_us(); /* now_us is the turn's start, before the pty */
+    xgo_host_view_serve_turn(v, fds, n, now_us);
+    xgo_host_view_note_busy(v, xgo_host_clock_us() - start_us);
 }
 
 int xgo_host_view_attach(xgo_host_view_t *v, xgo_board_t *board, unsigned model,
@@ -420,4 +480,6 @@ void xgo_host_view_print_counters(const xgo_host_view_t *v, FILE *out)
     fprintf(out, "  %-22s %llu\n", "view_requests", (unsigned long long)c->requests);
     fprintf(out, "  %-22s %llu\n", "view_bad_requests", (unsigned long long)c->bad_requests);
     fprintf(out, "  %-22s %llu\n", "view_events", (unsigned long long)c->events);
+    fprintf(out, "  %-22s %llu\n", "view_busy_p99_us", (unsigned long long)xgo_host_view_busy(v, 990));
+    fprintf(out, "  %-22s %llu\n", "view_busy_max_us", (unsigned long long)v->busy_max_us);
 }

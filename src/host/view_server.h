@@ -55,6 +55,11 @@ typedef struct xgo_host_view_counters_s {
     uint64_t events;          /* SSE events queued */
 } xgo_host_view_counters_t;
 
+/* How long the server's work in one turn of the loop took (the most it can
+ * delay a pty byte that arrives meanwhile): 5 us buckets up to 5 ms. */
+#define XGO_HOST_VIEW_BUSY_BUCKET_US 5u
+#define XGO_HOST_VIEW_BUSY_BUCKETS 1001u
+
 typedef enum xgo_host_view_client_state_e {
     XGO_HOST_VIEW_FREE = 0,
     XGO_HOST_VIEW_READING,   /* waiting for (the rest of) a request */
@@ -95,8 +100,15 @@ typedef struct xgo_host_view_s {
     xgo_host_service_t service;
 
     xgo_host_view_client_t clients[XGO_HOST_VIEW_MAX_CLIENTS];
-    char object[XGO_HOST_VIEW_OBJECT_BYTES]; /* scratch for one object */
+    char object[XGO_HOST_VIEW_OBJECT_BYTES]; /* scratch for one answer */
+    /* The period's event, sent client by client, possibly over several
+     * turns (the pty is served in between). */
+    char event_object[XGO_HOST_VIEW_OBJECT_BYTES];
+    xgo_host_json_t event_prefix; /* its shared members, in event_object */
+    uint32_t event_todo;          /* bit i: client i still to be sent it */
     xgo_host_view_counters_t counters;
+    uint32_t busy_hist[XGO_HOST_VIEW_BUSY_BUCKETS];
+    uint64_t busy_max_us;
 } xgo_host_view_t;
 
 /* Listens on addr:port (IPv4, host byte order; port 0 = any free port).

@@ -6,6 +6,8 @@
  */
 #include "view_state.h"
 
+#include <string.h>
+
 #include "xgo/emulator.h"
 
 /* Names of the mode register's values (xgo_mode_t). */
@@ -203,29 +205,54 @@ uint64_t xgo_host_view_state_first_cursor(const xgo_host_view_frames_t *f)
     return recent > oldest ? recent : oldest;
 }
 
-static void xgo_host_view_frame(xgo_host_json_t *w, const xgo_host_view_frame_t *e)
+/* The event's object, rendered once into its cache slot. */
+static void xgo_host_view_frame_render(xgo_host_view_frame_t *e)
 {
-    xgo_host_json_object_begin(w);
-    xgo_host_json_key(w, "t_ms");
-    xgo_host_json_uint(w, e->t_ms);
-    xgo_host_json_key(w, "kind");
-    xgo_host_json_string(w, xgo_host_view_frame_kind_name(e->kind));
-    xgo_host_json_key(w, "source");
-    xgo_host_json_string(w, xgo_host_view_frame_source_name(e->source));
-    xgo_host_json_key(w, "addr");
+    char text[XGO_HOST_VIEW_FRAME_TEXT];
+    xgo_host_json_t w;
+    xgo_host_view_frame_text(e, text);
+    xgo_host_json_init(&w, e->json, sizeof e->json);
+    xgo_host_json_object_begin(&w);
+    xgo_host_json_key(&w, "t_ms");
+    xgo_host_json_uint(&w, e->t_ms);
+    xgo_host_json_key(&w, "kind");
+    xgo_host_json_string(&w, xgo_host_view_frame_kind_name(e->kind));
+    xgo_host_json_key(&w, "source");
+    xgo_host_json_string(&w, xgo_host_view_frame_source_name(e->source));
+    xgo_host_json_key(&w, "addr");
     if (e->has_frame) {
-        xgo_host_json_uint(w, e->frame_addr);
+        xgo_host_json_uint(&w, e->frame_addr);
     } else {
-        xgo_host_json_null(w); /* a parser drop: no frame, only bytes */
+        xgo_host_json_null(&w); /* a parser drop: no frame, only bytes */
     }
-    xgo_host_json_key(w, "n");
+    xgo_host_json_key(&w, "n");
     /* A read request's n is its count; otherwise the bytes it carried. */
-    xgo_host_json_uint(w, !e->has_frame                     ? e->raw_len
-                          : e->frame_type == XGO_TYPE_READ ? e->frame_data[0]
-                                                           : e->frame_len);
-    xgo_host_json_key(w, "text");
-    xgo_host_json_string(w, e->text);
-    xgo_host_json_object_end(w);
+    xgo_host_json_uint(&w, !e->has_frame                     ? e->raw_len
+                           : e->frame_type == XGO_TYPE_READ ? e->frame_data[0]
+                                                            : e->frame_len);
+    xgo_host_json_key(&w, "text");
+    xgo_host_json_string(&w, text);
+    xgo_host_json_object_end(&w);
+    if (!xgo_host_json_ok(&w)) {
+        /* Cannot happen with our sizes; an empty object keeps the list valid. */
+        memcpy(e->json, "{}", 3);
+        w.len = 2;
+    }
+    e->json_len = (uint16_t)w.len;
+}
+
+unsigned xgo_host_view_state_render(xgo_host_view_frames_t *f, unsigned budget)
+{
+    uint64_t seq = xgo_host_view_state_first_cursor(f);
+    unsigned done = 0;
+    for (; seq < f->next_seq && done < budget; seq++) {
+        xgo_host_view_frame_t *e = xgo_host_view_frames_get(f, seq);
+        if (e->json_len == 0) {
+            xgo_host_view_frame_render(e);
+            done++;
+        }
+    }
+    return done;
 }
 
 void xgo_host_view_state_close(xgo_host_json_t *w, xgo_host_view_frames_t *f, uint64_t *cursor)
@@ -241,7 +268,11 @@ void xgo_host_view_state_close(xgo_host_json_t *w, xgo_host_view_frames_t *f, ui
     xgo_host_json_key(w, "frames");
     xgo_host_json_array_begin(w);
     for (seq = first; seq < f->next_seq; seq++) {
-        xgo_host_view_frame(w, xgo_host_view_frames_get(f, seq));
+        xgo_host_view_frame_t *e = xgo_host_view_frames_get(f, seq);
+        if (e->json_len == 0) {
+            xgo_host_view_frame_render(e);
+        }
+        xgo_host_json_value_text(w, e->json, e->json_len);
     }
     xgo_host_json_array_end(w);
     xgo_host_json_key(w, "frames_omitted");

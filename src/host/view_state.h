@@ -31,6 +31,12 @@ const char *xgo_host_view_mode_name(uint8_t mode);
  * the closing brace, and moves *cursor past the newest event. */
 void xgo_host_view_state_close(xgo_host_json_t *w, xgo_host_view_frames_t *f, uint64_t *cursor);
 
+/* Renders the JSON object of up to `budget` events among the newest
+ * XGO_HOST_VIEW_FRAMES_PER_EVENT that do not have one yet; returns how many
+ * it rendered (0: all there). Lets the server spread that work over turns
+ * of the loop; xgo_host_view_state_close renders what is still missing. */
+unsigned xgo_host_view_state_render(xgo_host_view_frames_t *f, unsigned budget);
+
 /* Where a new client's cursor starts: the last events already held (up to
  * one object's worth) are new to it, so /state shows recent traffic. */
 uint64_t xgo_host_view_state_first_cursor(const xgo_host_view_frames_t *f);
