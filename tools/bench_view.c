@@ -187,6 +187,34 @@ static int measure(int clients, size_t n, double *lat, figures_t *out)
     return 0;
 }
 
+#define MAX_ROUNDS 64
+
+/* Median of n values (sorted in place). */
+static double median(double *v, int n)
+{
+    qsort(v, (size_t)n, sizeof *v, cmp_double);
+    return n % 2 ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2;
+}
+
+/* The medians over the rounds of each figure, for 0 and 4 clients. */
+static void print_medians(figures_t f[2][MAX_ROUNDS], int rounds)
+{
+    int c, r;
+    for (c = 0; c < 2; c++) {
+        double p50[MAX_ROUNDS], p99[MAX_ROUNDS], l50[MAX_ROUNDS], l99[MAX_ROUNDS];
+        for (r = 0; r < rounds; r++) {
+            p50[r] = f[c][r].p50;
+            p99[r] = f[c][r].p99;
+            l50[r] = (double)f[c][r].late_p50;
+            l99[r] = (double)f[c][r].late_p99;
+        }
+        printf("  median of %d rounds, %d view clients: reply p50 %6.1f us  p99 %7.1f us   "
+               "tick lateness p50 %5.0f us  p99 %5.0f us\n",
+               rounds, c * MAX_CLIENTS, median(p50, rounds), median(p99, rounds),
+               median(l50, rounds), median(l99, rounds));
+    }
+}
+
 static double cpu_percent(pid_t pid, int tty, int walking)
 {
     long hz = sysconf(_SC_CLK_TCK);
@@ -228,10 +256,11 @@ int main(int argc, char **argv)
     size_t n = argc > 1 ? (size_t)strtoul(argv[1], NULL, 10) : 5000;
     int rounds = argc > 2 ? atoi(argv[2]) : 3;
     g_hz = argc > 3 ? argv[3] : g_hz;
+    static figures_t all[2][MAX_ROUNDS];
     double *lat;
     int r;
     signal(SIGPIPE, SIG_IGN);
-    if (n == 0 || rounds <= 0) {
+    if (n == 0 || rounds <= 0 || rounds > MAX_ROUNDS) {
         fprintf(stderr, "usage: bench_view [REQUESTS [ROUNDS [HZ]]]\n");
         return 2;
     }
@@ -253,12 +282,14 @@ int main(int argc, char **argv)
                 free(lat);
                 return 1;
             }
+            all[clients != 0][r] = f;
             printf("  round %d, %d view clients: reply p50 %6.1f us  p99 %7.1f us   "
                    "tick lateness p50 %4ld us  p99 %5ld us   view work/turn p99 %3ld us  max %5ld us\n",
                    r + 1, clients, f.p50, f.p99, f.late_p50, f.late_p99, f.busy_p99, f.busy_max);
         }
     }
     free(lat);
+    print_medians(all, rounds);
     measure_cpu();
     unlink(g_run.err_path);
     return 0;
