@@ -308,7 +308,7 @@ static void test_format_parse_round_trip(void)
     size_t len = xgo_host_state_format(&nv, text, sizeof text);
     TEST_ASSERT_TRUE(len > 0);
     memset(&back, 0x5A, sizeof back);
-    TEST_ASSERT_TRUE_MESSAGE(xgo_host_state_parse(text, len, &back, why, sizeof why), why);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(0, xgo_host_state_parse(text, len, &back, why, sizeof why), why);
     assert_nv_equal(&nv, &back);
 }
 
@@ -324,19 +324,19 @@ static void test_every_truncation_and_bit_flip_is_refused(void)
     size_t len = xgo_host_state_format(&nv, text, sizeof text);
     size_t i;
     for (i = 0; i < len; i++) {
-        TEST_ASSERT_FALSE_MESSAGE(xgo_host_state_parse(text, i, &back, why, sizeof why),
-                                  "a truncated file was accepted");
+        TEST_ASSERT_EQUAL_INT_MESSAGE(-1, xgo_host_state_parse(text, i, &back, why, sizeof why),
+                                      "a truncated file was accepted");
     }
     for (i = 0; i < len * 8; i++) {
         memcpy(bad, text, len);
         bad[i / 8] = (char)(bad[i / 8] ^ (1 << (i % 8)));
-        TEST_ASSERT_FALSE_MESSAGE(xgo_host_state_parse(bad, len, &back, why, sizeof why),
-                                  "a file with a flipped bit was accepted");
+        TEST_ASSERT_EQUAL_INT_MESSAGE(-1, xgo_host_state_parse(bad, len, &back, why, sizeof why),
+                                      "a file with a flipped bit was accepted");
     }
     /* and a trailing extra byte */
     memcpy(bad, text, len);
     bad[len] = '\n';
-    TEST_ASSERT_FALSE(xgo_host_state_parse(bad, len + 1, &back, why, sizeof why));
+    TEST_ASSERT_EQUAL_INT(-1, xgo_host_state_parse(bad, len + 1, &back, why, sizeof why));
 }
 
 /* Files with a correct crc but a wrong layout (hand-edited and re-signed). */
@@ -355,7 +355,7 @@ static void assert_crlf_refused_plainly(void)
     for (i = 0; i < sizeof bodies / sizeof bodies[0]; i++) {
         sign(bodies[i], text, sizeof text);
         why[0] = '\0';
-        TEST_ASSERT_FALSE(xgo_host_state_parse(text, strlen(text), &nv, why, sizeof why));
+        TEST_ASSERT_EQUAL_INT(-1, xgo_host_state_parse(text, strlen(text), &nv, why, sizeof why));
         TEST_ASSERT_NOT_NULL_MESSAGE(strstr(why, "line endings must be LF"), why);
         TEST_ASSERT_NULL_MESSAGE(strchr(why, '\r'), why);
     }
@@ -390,15 +390,16 @@ static void test_layout_errors_are_refused_with_a_reason(void)
     for (i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         sign(cases[i].body, text, sizeof text);
         why[0] = '\0';
-        TEST_ASSERT_FALSE_MESSAGE(xgo_host_state_parse(text, strlen(text), &nv, why, sizeof why),
-                                  cases[i].body);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(
+            -1, xgo_host_state_parse(text, strlen(text), &nv, why, sizeof why), cases[i].body);
         TEST_ASSERT_NOT_NULL_MESSAGE(strstr(why, cases[i].reason), why);
     }
     /* The extremes of the syntax are accepted (range is the board's call). */
     sign("xgo-state 1\nbt_name= ~ \nzero_offsets_mdeg=-2147483648 0 0 0 0 0 0 0 0 0 0 "
          "2147483647\n",
          text, sizeof text);
-    TEST_ASSERT_TRUE_MESSAGE(xgo_host_state_parse(text, strlen(text), &nv, why, sizeof why), why);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(0, xgo_host_state_parse(text, strlen(text), &nv, why, sizeof why),
+                                  why);
     TEST_ASSERT_EQUAL_MEMORY(" ~ \0", nv.bt_name, 4);
     TEST_ASSERT_EQUAL_INT32(INT32_MIN, nv.zero_offset_mdeg[0]);
     TEST_ASSERT_EQUAL_INT32(INT32_MAX, nv.zero_offset_mdeg[11]);
@@ -762,7 +763,7 @@ static void test_bad_state_file_refuses_to_start(void)
     TEST_ASSERT_NULL_MESSAGE(strchr(text, '\r'), text);
     sign("xgo-state 1\nbt_name=Rex\nzero_offsets_mdeg=0 0 0 0 0 0 0 0 0 0 0 400000\n", text,
          sizeof text); /* syntax fine, the board refuses 400 degrees */
-    TEST_ASSERT_TRUE(xgo_host_state_parse(text, strlen(text), &nv, why, sizeof why));
+    TEST_ASSERT_EQUAL_INT(0, xgo_host_state_parse(text, strlen(text), &nv, why, sizeof why));
     write_file(g_state, text);
     assert_refused("out of range");
 

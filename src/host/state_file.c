@@ -232,40 +232,40 @@ int xgo_host_state_parse(const char *text, size_t len, xgo_board_nv_t *nv, char 
     if (!xgo_host_next_line(&p, text + len, &line, &line_len) ||
         !xgo_host_has_prefix(line, line_len, XGO_HOST_STATE_HEADER)) {
         snprintf(err, err_size, "not an xgo-emu state file (no 'xgo-state 1' first line)");
-        return 0;
+        return -1;
     }
     /* An editor that saved it with CR LF: say so, rather than quote a CR. */
     if (memchr(text, '\r', len) != NULL) {
         snprintf(err, err_size, "line endings must be LF, this file has CR LF (or a stray CR)");
-        return 0;
+        return -1;
     }
     if (line_len != strlen(XGO_HOST_STATE_HEADER) + 1 || line[line_len - 1] != '1') {
         xgo_host_quote(line, line_len, quoted, sizeof quoted);
         snprintf(err, err_size, "unsupported format '%s' (this xgo-emu reads 'xgo-state 1')",
                  quoted);
-        return 0;
+        return -1;
     }
     if (!xgo_host_check_crc(text, len, &body_end, err, err_size)) {
-        return 0;
+        return -1;
     }
     end = text + body_end;
     if (!xgo_host_next_line(&p, end, &line, &line_len) ||
         !xgo_host_has_prefix(line, line_len, XGO_HOST_STATE_KEY_NAME) ||
         !xgo_host_parse_name(line + 8, line_len - 8, nv->bt_name)) {
         snprintf(err, err_size, "line 2 must be bt_name= and 1..10 printable ASCII characters");
-        return 0;
+        return -1;
     }
     if (!xgo_host_next_line(&p, end, &line, &line_len) ||
         !xgo_host_has_prefix(line, line_len, XGO_HOST_STATE_KEY_OFFSETS) ||
         !xgo_host_parse_offsets(line + 18, line_len - 18, nv->zero_offset_mdeg)) {
         snprintf(err, err_size, "line 3 must be zero_offsets_mdeg= and 12 whole numbers");
-        return 0;
+        return -1;
     }
     if (p != end) {
         snprintf(err, err_size, "unexpected lines before the crc32 line");
-        return 0;
+        return -1;
     }
-    return 1;
+    return 0;
 }
 
 /* ------------------------------------------------------------ file I/O */
@@ -336,7 +336,7 @@ xgo_host_state_load_t xgo_host_state_load(const char *path, xgo_board_nv_t *nv, 
         snprintf(err, err_size, "too large to be an xgo-emu state file");
         return XGO_HOST_STATE_BAD;
     }
-    return xgo_host_state_parse(buf, len, nv, err, err_size) ? XGO_HOST_STATE_LOADED
+    return xgo_host_state_parse(buf, len, nv, err, err_size) == 0 ? XGO_HOST_STATE_LOADED
                                                              : XGO_HOST_STATE_BAD;
 }
 

@@ -39,7 +39,7 @@
 size_t xgo_host_state_format(const xgo_board_nv_t *nv, char *buf, size_t size);
 
 /* Parses a whole file's text (len bytes, need not be NUL-terminated).
- * Returns 1 and fills nv, or 0 with a one-line reason in err. Checks the
+ * Returns 0 and fills nv, or -1 with a one-line reason in err. Checks the
  * layout and the CRC; whether the values are acceptable is the board's call
  * (xgo_board_set_nv). */
 int xgo_host_state_parse(const char *text, size_t len, xgo_board_nv_t *nv, char *err,
