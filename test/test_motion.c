@@ -158,6 +158,65 @@ static void test_walking_forward_moves_stance_feet_backward(void)
     TEST_ASSERT_INT32_WITHIN(15000, 150000, produced_vx());
 }
 
+/* Each foot's place on the floor: the world pose (odometry) carrying the
+ * machine-frame foot (body pose + FK of the actual joints), x and y in mm. */
+static void feet_on_floor(double out[XGO_LEG_COUNT][2])
+{
+    xgo_vec3_t feet[XGO_LEG_COUNT];
+    xgo_body_pose_t pose;
+    xgo_world_pose_t w;
+    double yaw, c, s;
+    unsigned leg;
+    xgo_board_feet_um(&board, feet);
+    xgo_board_body_pose(&board, &pose);
+    xgo_board_world_pose(&board, &w);
+    yaw = w.yaw_mdeg / 1000.0 * M_PI / 180.0;
+    c = cos(yaw);
+    s = sin(yaw);
+    for (leg = 0; leg < XGO_LEG_COUNT; leg++) { /* level body: attitude 0 here */
+        const double mx = (pose.x_um + feet[leg].x) / 1000.0, my = (pose.y_um + feet[leg].y) / 1000.0;
+        out[leg][0] = w.x_um / 1000.0 + c * mx - s * my;
+        out[leg][1] = w.y_um / 1000.0 + s * mx + c * my;
+    }
+}
+
+/* Issue 9 part 4, measured with the board's own FK and odometry: trotting
+ * at the vendor maxima (forward 250 mm/s, sideways 180 mm/s, turning 100
+ * deg/s), a foot's speed over the floor in the tick it lifts off or touches
+ * down is at most 20 mm/s (the swing used to leave and land at the body's
+ * speed: 256 mm/s at 250 mm/s). */
+static void test_trotting_feet_lift_and_land_at_the_speed_of_the_floor(void)
+{
+    static const uint8_t cmds[3][2] = {{XGO_REG_VX, 0xFF}, {XGO_REG_VY, 0x00}, {XGO_REG_VYAW, 0xFF}};
+    unsigned k, t, leg, events = 0;
+    for (k = 0; k < 3; k++) {
+        double prev[XGO_LEG_COUNT][2], now[XGO_LEG_COUNT][2], worst = 0.0;
+        uint8_t before;
+        xgo_board_init(&board, NULL);
+        wr(cmds[k][0], cmds[k][1]);
+        ticks(XGO_TICK_HZ); /* past the ramp */
+        feet_on_floor(prev);
+        before = xgo_board_contacts(&board);
+        for (t = 0; t < 2 * XGO_TICK_HZ; t++) {
+            uint8_t after;
+            ticks(1);
+            feet_on_floor(now);
+            after = xgo_board_contacts(&board);
+            for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
+                if (((before ^ after) >> leg) & 1u) {
+                    const double v = hypot(now[leg][0] - prev[leg][0], now[leg][1] - prev[leg][1]) * XGO_TICK_HZ;
+                    worst = v > worst ? v : worst;
+                    events++;
+                }
+            }
+            memcpy(prev, now, sizeof prev);
+            before = after;
+        }
+        TEST_ASSERT_TRUE_MESSAGE(worst <= 20.0, xgo_reg_name(cmds[k][0]));
+    }
+    TEST_ASSERT_GREATER_THAN_UINT(60, events);
+}
+
 static void test_turning_integrates_yaw(void)
 {
     /* +50 deg/s for 4 s (after a 0.2 s ramp) -> about +190 deg, wrapped. */
@@ -641,6 +700,7 @@ int main(void)
     RUN_TEST(test_mode_register_follows_the_group_written);
     RUN_TEST(test_dead_band_7f_and_80_both_mean_stop);
     RUN_TEST(test_walking_forward_moves_stance_feet_backward);
+    RUN_TEST(test_trotting_feet_lift_and_land_at_the_speed_of_the_floor);
     RUN_TEST(test_turning_integrates_yaw);
     RUN_TEST(test_body_attitude_shows_on_the_imu);
     RUN_TEST(test_body_height_changes_the_legs);

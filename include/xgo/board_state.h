@@ -64,6 +64,8 @@ typedef struct xgo_gait_s {
     /* ---- state ---- */
     int32_t pos_q8[XGO_LEG_COUNT][2];  /* feet x, y in 1/256 um */
     int32_t lift_q8[XGO_LEG_COUNT][2]; /* where the current swing started */
+    int32_t land_q8[XGO_LEG_COUNT][2]; /* where it lands: the touchdown point,
+                                          frozen over the swing's second half */
     int32_t swing_height_um[XGO_LEG_COUNT]; /* latched at lift-off */
     int32_t reach_y_um[XGO_LEG_COUNT]; /* y reach of a planted foot: set at
                                           touchdown, only grows in stance */

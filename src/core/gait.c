@@ -51,6 +51,9 @@
 #define KRATE(dn, dd) ((uint32_t)((2147483648ULL * (uint64_t)(dn)) / ((uint64_t)TICKS_PER_S * (dd))))
 #define KHALF(ms) ((uint32_t)(((uint64_t)(ms) << 22) / 1000u))
 #define KTAU(dn, dd) ((uint32_t)((549755813888ULL * (uint64_t)(dn)) / ((uint64_t)TICKS_PER_S * (dd))))
+/* Swing S = sn/sd: S * 2^40 / TICKS_PER_S, so that k_swing / (rate >> 8) is
+ * the swing's duration in s Q16 (S of a cycle of 2^32 / (rate TICKS_PER_S) s). */
+#define KSWING(sn, sd) ((uint32_t)((1099511627776ULL * (uint64_t)(sn)) / ((uint64_t)TICKS_PER_S * (sd))))
 
 /* Trot: diagonal pairs LF+RH and RF+LH half a cycle apart, duty 0.5.
  * Walk: lateral sequence LH, LF, RH, RF, a quarter cycle apart, duty 0.75.
@@ -60,19 +63,19 @@
 
 static const gait_table_t k_tables[XGO_GAIT_TYPE_COUNT] = {
     /* XGO_GAIT_TROT */
-    { Q32(1, 2), 2u << 16, TROT_LIFT, KRATE(1, 2), KTAU(1, 2),
+    { Q32(1, 2), 2u << 16, TROT_LIFT, KRATE(1, 2), KTAU(1, 2), KSWING(1, 2),
       { RATE(400), RATE(600), RATE(300) }, RATE(240), KHALF(240), { 400, 600, 300 },
       20000, 0, 50 },
     /* XGO_GAIT_WALK */
-    { Q32(1, 4), 4u << 16, WALK_LIFT, KRATE(3, 4), KTAU(3, 4),
+    { Q32(1, 4), 4u << 16, WALK_LIFT, KRATE(3, 4), KTAU(3, 4), KSWING(1, 4),
       { RATE(800), RATE(1200), RATE(600) }, RATE(220), KHALF(220), { 800, 1200, 600 },
       20000, 1, 75 },
     /* XGO_GAIT_HIGH_WALK: the walk's timing, a higher swing */
-    { Q32(1, 4), 4u << 16, WALK_LIFT, KRATE(3, 4), KTAU(3, 4),
+    { Q32(1, 4), 4u << 16, WALK_LIFT, KRATE(3, 4), KTAU(3, 4), KSWING(1, 4),
       { RATE(800), RATE(1200), RATE(600) }, RATE(220), KHALF(220), { 800, 1200, 600 },
       30000, 1, 75 },
     /* XGO_GAIT_SLOW_TROT: trot pairs, duty 0.6, longer periods */
-    { Q32(2, 5), (5u << 16) / 2u, TROT_LIFT, KRATE(3, 5), KTAU(3, 5),
+    { Q32(2, 5), (5u << 16) / 2u, TROT_LIFT, KRATE(3, 5), KTAU(3, 5), KSWING(2, 5),
       { RATE(600), RATE(800), RATE(450) }, RATE(280), KHALF(280), { 600, 800, 450 },
       20000, 2, 60 },
 };
@@ -164,6 +167,7 @@ void xgo_gait_init(xgo_gait_t *g, const xgo_vec3_t stance_um[XGO_LEG_COUNT])
         for (c = 0; c < 2; ++c) {
             g->pos_q8[leg][c] = g->stance_um[leg][c] * 256;
             g->lift_q8[leg][c] = g->pos_q8[leg][c];
+            g->land_q8[leg][c] = g->pos_q8[leg][c];
         }
         g->swing_height_um[leg] = 0;
         g->reach_y_um[leg] = XGO_GAIT_REACH_Y_UM;
@@ -484,6 +488,27 @@ static void pick_cadence(xgo_gait_t *g, gait_tick_t *x)
 
 /* ------------------------------------------------------------ 4. phase */
 
+/* A foot changes between stance and swing at an event inside the tick, theta
+ * (< rate) of phase before the tick's end: for the share of the tick it is
+ * down - the part after a touchdown, or before a lift-off (`before`) - it
+ * moves with the ground like any planted foot, so its ground speed does not
+ * jump at the event (docs/gait.md, Swing). */
+static void stance_part(const gait_tick_t *x, int32_t pos_q8[2], uint32_t theta, int before)
+{
+    const uint32_t r = x->rate >> 16;
+    uint32_t share = r == 0u ? 0u : theta / r; /* after the event, Q16 */
+    int32_t f[2];
+    int c;
+    share = share > 65536u ? 65536u : share;
+    if (before) {
+        share = 65536u - share;
+    }
+    foot_velocity(x->vel, x->w_q24, pos_q8[0] >> 8, pos_q8[1] >> 8, f);
+    for (c = 0; c < 2; ++c) {
+        pos_q8[c] -= mul_q(mul_q(f[c], K_UMS_TO_Q8_TICK_Q31, 31u), (int32_t)share, 16u);
+    }
+}
+
 /* Touchdowns under the table in use: a foot whose swing ended is placed at
  * its touchdown point. Returns 1 if a foot is still in the air. */
 static int land_feet(xgo_gait_t *g, gait_tick_t *x)
@@ -495,7 +520,10 @@ static int land_feet(xgo_gait_t *g, gait_tick_t *x)
         if (g->swinging[leg]) {
             if (g->phase - t->lift[leg] >= t->swing) {
                 g->swinging[leg] = 0;
-                touchdown_q8(g, x, leg, g->pos_q8[leg]);
+                g->pos_q8[leg][0] = g->land_q8[leg][0];
+                g->pos_q8[leg][1] = g->land_q8[leg][1];
+                /* down for the part of the tick after the touchdown */
+                stance_part(x, g->pos_q8[leg], g->phase - t->lift[leg] - t->swing, 0);
                 g->reach_y_um[leg] = gait_reach_y(g->v_ramp[2]);
                 x->moved[leg] = 1;
             } else {
@@ -559,6 +587,8 @@ static void lift_feet(xgo_gait_t *g, const gait_tick_t *x)
             g->swinging[leg] = 1;
             g->lift_q8[leg][0] = g->pos_q8[leg][0];
             g->lift_q8[leg][1] = g->pos_q8[leg][1];
+            /* still down for the part of the tick before the lift-off */
+            stance_part(x, g->lift_q8[leg], g->phase - x->t->lift[leg], 1);
             g->swing_height_um[leg] = x->mark > 0 ? x->mark : x->t->height_um;
         }
     }
@@ -599,28 +629,70 @@ static void stance_step(xgo_gait_t *g, const gait_tick_t *x, int leg)
     }
 }
 
-/* Swing: from the lift-off point toward the touchdown point (which tracks
- * the velocity) on a cosine blend with zero slope at both ends, lifted on a
- * sin^2 arc to the latched height. */
+/* The landing point follows the touchdown point (which moves with the
+ * velocity) during the first half of the swing; over the second half it
+ * follows less and less (a share 1 - smoothstep of the gap per tick) and not
+ * at all at the end, so a velocity ramp does not drag the foot along the
+ * ground as it lands. td (in) becomes the landing point (out). u: swing
+ * progress, Q26. */
+static void land_point(xgo_gait_t *g, int leg, int32_t u, int32_t td[2])
+{
+    const int32_t half = 1 << 25;
+    int c;
+    if (u >= half) {
+        const int32_t r = 2 * (u - half); /* 0..1 over the second half, Q26 */
+        const int32_t r2 = mul_q(r, r, 26u);
+        const int32_t follow = (1 << 26) - mul_q(r2, 3 * (1 << 26) - 2 * r, 26u);
+        for (c = 0; c < 2; ++c) {
+            td[c] = g->land_q8[leg][c] + mul_q(td[c] - g->land_q8[leg][c], follow, 26u);
+        }
+    }
+    g->land_q8[leg][0] = td[0];
+    g->land_q8[leg][1] = td[1];
+}
+
+/* Swing: from the lift-off point to the touchdown point (which tracks the
+ * velocity) on a quintic Hermite curve in the swing progress psi: at both
+ * ends the foot moves like a planted one - velocity -(v + w x p) (the end
+ * tangents, times the swing time) and no acceleration relative to it - so
+ * it leaves and meets the ground at the ground's speed, without skimming;
+ * lifted on a sin^2 arc to the latched height. Basis in Q26 (psi < 1):
+ *   h(u) = u^3 (10 - 15u + 6u^2)         0 -> 1
+ *   a(u) = u + u^3 (-6 + 8u - 3u^2)      start tangent
+ *   b(u) = u^3 (-4 + 7u - 3u^2)          end tangent */
 static void swing_step(xgo_gait_t *g, gait_tick_t *x, int leg)
 {
-    int32_t td[2];
+    const int32_t one = 1 << 26;
+    int32_t td[2], f0[2], f1[2];
     uint32_t theta = g->phase - x->t->lift[leg];
     uint32_t psi = (uint32_t)(((uint64_t)theta * x->t->inv_swing_q16) >> 16);
-    xgo_q30_t s, co, h;
+    const int32_t u = (int32_t)(psi >> 6);
+    const int32_t u2 = mul_q(u, u, 26u), u3 = mul_q(u2, u, 26u);
+    const int32_t h = mul_q(u3, 10 * one - 15 * u + 6 * u2, 26u);
+    const int32_t a = u + mul_q(u3, -6 * one + 8 * u - 3 * u2, 26u);
+    const int32_t b = mul_q(u3, -4 * one + 7 * u - 3 * u2, 26u);
+    xgo_q30_t s, co;
     int c;
     touchdown_q8(g, x, leg, td);
-    xgo_sincos(psi >> 1, &s, &co);      /* angle pi * psi */
-    h = (XGO_Q30_ONE >> 1) - (co >> 1); /* 0 -> 1, zero slope at both ends */
+    land_point(g, leg, u, td);
+    foot_velocity(x->vel, x->w_q24, g->lift_q8[leg][0] >> 8, g->lift_q8[leg][1] >> 8, f0);
+    foot_velocity(x->vel, x->w_q24, td[0] >> 8, td[1] >> 8, f1);
     for (c = 0; c < 2; ++c) {
-        g->pos_q8[leg][c] = g->lift_q8[leg][c] + mul_q(td[c] - g->lift_q8[leg][c], h, 30u);
+        /* end tangents in 1/256 um per unit of psi: -f * T_swing */
+        const int32_t m0 = -mul_q(f0[c], (int32_t)x->swing_q16, 8u);
+        const int32_t m1 = -mul_q(f1[c], (int32_t)x->swing_q16, 8u);
+        g->pos_q8[leg][c] = g->lift_q8[leg][c] + mul_q(td[c] - g->lift_q8[leg][c], h, 26u) +
+                            mul_q(m0, a, 26u) + mul_q(m1, b, 26u);
     }
+    xgo_sincos(psi >> 1, &s, &co); /* angle pi * psi */
     x->z_um[leg] = mul_q(g->swing_height_um[leg], mul_q(s, s, 30u), 30u);
 }
 
 static void move_feet(xgo_gait_t *g, gait_tick_t *x)
 {
+    const uint32_t r = x->rate >> 8;
     int leg;
+    x->swing_q16 = x->t->k_swing / (r == 0u ? 1u : r);
     for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
         x->z_um[leg] = 0;
     }

@@ -30,10 +30,14 @@
  *     everywhere inside the vendor ranges (no speed limiting there);
  *   - no foot moves more than XGO_GAIT_MAX_STEP_UM in one tick (in the trots
  *     XGO_GAIT_MAX_STEP_TROT_UM), whatever the command sequence;
- *   - feet stay within +-XGO_GAIT_REACH_X_UM in x and +-XGO_GAIT_REACH_Y_UM
- *     in y of their stance points, y widened by up to XGO_GAIT_YAW_REACH_Y_UM
- *     in proportion to |w| (up to 100 deg/s) while turning; z from 0 to the
- *     step height;
+ *   - planted feet stay within +-XGO_GAIT_REACH_X_UM in x and
+ *     +-XGO_GAIT_REACH_Y_UM in y of their stance points, y widened by up to
+ *     XGO_GAIT_YAW_REACH_Y_UM in proportion to |w| (up to 100 deg/s) while
+ *     turning; a swing foot may pass that box by XGO_GAIT_SWING_OVERSHOOT_UM
+ *     (it reaches a little ahead and comes back to land at the ground's
+ *     speed); z from 0 to the step height;
+ *   - swing feet leave and meet the ground moving like a planted foot
+ *     (velocity -(v + w x p), no acceleration relative to it);
  *   - a zero command ends, within XGO_GAIT_STOP_TICKS_MAX ticks, with four
  *     feet down exactly at the stance points.
  *
@@ -105,11 +109,16 @@ typedef enum xgo_pace_e { XGO_PACE_NORMAL = 0, XGO_PACE_SLOW = 1, XGO_PACE_HIGH 
 #define XGO_GAIT_REACH_Y_UM 18000
 #define XGO_GAIT_YAW_REACH_Y_UM 14000
 
+/* How far a swing foot may pass the reach box: the retraction before it
+ * lands at the ground's speed (and the matching lead after lift-off);
+ * docs/gait.md derives 9.7 % of the step in a steady trot. */
+#define XGO_GAIT_SWING_OVERSHOOT_UM 8000
+
 /* Largest displacement of any foot in one tick (3-D, any command sequence;
  * derivation in docs/gait.md, measured maxima in test/test_gait.c): the walks
  * at their fastest cadence, and the trots (trot, slow trot, mark time). */
-#define XGO_GAIT_MAX_STEP_UM 6000
-#define XGO_GAIT_MAX_STEP_TROT_UM 3000
+#define XGO_GAIT_MAX_STEP_UM 7500
+#define XGO_GAIT_MAX_STEP_TROT_UM 4500
 
 /* Ticks from a zero command (mark time off) to standing, from any state:
  * the ramp down (0.5 s from the vendor maxima, 1 s from the clamps) plus at

@@ -23,6 +23,7 @@ typedef struct gait_table_s {
     uint32_t lift[XGO_LEG_COUNT]; /* lift-off phase per leg, Q32 */
     uint32_t k_rate;        /* D * 2^31 / TICKS_PER_S (D = 1 - S, the duty factor) */
     uint32_t k_tau;         /* D * 2^39 / TICKS_PER_S */
+    uint32_t k_swing;       /* S * 2^40 / TICKS_PER_S (swing time, see swing_time_q16) */
     uint32_t rate[XGO_PACE_COUNT]; /* nominal cadence per pace */
     uint32_t rate_max;      /* cadence cap */
     uint32_t k_half;        /* shortest period (ms) * 2^22 / 1000, see half_time_q16 */
@@ -47,6 +48,7 @@ typedef struct gait_tick_s {
     int32_t w_q24;       /* produced yaw rate, rad/s Q24 */
     /* the cadence (cadence stage) */
     uint32_t tau_q16;    /* half the stance time at the fitted cadence, s Q16 */
+    uint32_t swing_q16;  /* the swing's duration at this tick's rate, s Q16 */
     uint32_t rate;       /* phase advance of this tick */
     int32_t vf[XGO_LEG_COUNT][2]; /* ground velocity of each planted foot */
     /* events (phase stage) and trajectories */
