@@ -65,7 +65,7 @@ static void test_caller_bugs_reach_the_hook(void)
     xgo_board_default_config(&cfg);
     cfg.battery_pct = 101;
     EXPECT_CHECK(xgo_board_init(&other, &cfg),
-                 "cfg == NULL || (cfg->model <= XGO_MODEL_LITE && cfg->battery_pct <= 100)");
+                 "cfg == NULL || (cfg->model <= XGO_MODEL_MINI2 && cfg->battery_pct <= 100)");
     EXPECT_CHECK(xgo_board_receive(&board, NULL, 3, 0), "bytes != NULL || n == 0");
     EXPECT_CHECK(xgo_board_write(&board, XGO_SOURCE_CLI, 0x30, NULL, 1), "data != NULL || n == 0");
     EXPECT_CHECK(xgo_board_transmit(&board, NULL, sizeof out), "out != NULL || max == 0");

@@ -54,7 +54,12 @@
 extern "C" {
 #endif
 
-typedef enum xgo_model_e { XGO_MODEL_MINI = 0, XGO_MODEL_LITE = 1 } xgo_model_t;
+/* The robot models (xgo_profile_get takes the same codes). */
+typedef enum xgo_model_e {
+    XGO_MODEL_MINI = 0,
+    XGO_MODEL_LITE = 1,
+    XGO_MODEL_MINI2 = 2 /* the Mini with the arm and claw (firmware 'W') */
+} xgo_model_t;
 
 typedef struct xgo_board_config_s {
     xgo_model_t model;
@@ -211,6 +216,17 @@ typedef struct xgo_gait_status_s {
     uint32_t phase;   /* master phase, 2^32 = one cycle */
 } xgo_gait_status_t;
 void xgo_board_gait(const xgo_board_t *b, xgo_gait_status_t *out);
+
+/* The Mini2's arm as it is (profile.h has the angle conventions). */
+typedef struct xgo_board_arm_s {
+    int32_t joints_mdeg[XGO_ARM_JOINT_COUNT]; /* claw, elbow, shoulder: where they are */
+    xgo_vec3_t shoulder_um; /* body frame (y = 0: the arm's plane) */
+    xgo_vec3_t elbow_um;
+    xgo_vec3_t claw_um;     /* the claw point */
+    uint8_t out_of_reach;   /* the point it serves was out of reach (clamped) */
+} xgo_board_arm_t;
+/* 1 and *out filled on a model with the arm; 0 (out untouched) without. */
+int xgo_board_arm(const xgo_board_t *b, xgo_board_arm_t *out);
 
 /* Bytes of a frame the parser holds so far (0 between frames). */
 size_t xgo_board_rx_pending(const xgo_board_t *b);

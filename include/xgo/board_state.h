@@ -46,6 +46,9 @@ typedef struct xgo_regs_s {
     uint8_t turn_to[2];              /* last heading command at 0x3F, int16 BE */
     uint8_t servo_cmd[12];           /* servo-mode commands written to 0x50..0x5B
                                         (mem there: the joints as they are) */
+    uint8_t servo_speed;             /* last value written to 0x5C (on the Mini2
+                                        0x5C reads the claw instead) */
+    uint8_t arm;                     /* the model has the arm: XGO_REGF_ARM rows */
     xgo_regs_stats_t stats;
 } xgo_regs_t;
 
@@ -162,6 +165,17 @@ typedef struct xgo_inertial_s {
     int16_t gyro[3];
 } xgo_inertial_t;
 
+/* The Mini2's arm and claw (src/core/arm.h); geo NULL on a model without. */
+typedef struct xgo_arm_s {
+    const xgo_arm_geometry_t *geo;
+    int32_t q_mdeg[XGO_ARM_JOINT_COUNT];      /* servo angles: where they are */
+    int32_t target_mdeg[XGO_ARM_JOINT_COUNT]; /* where they are going */
+    int32_t point_um[2];                      /* commanded claw point x, z (arm frame) */
+    uint8_t follow_point;  /* the joints serve point_um (else direct servo commands) */
+    uint8_t out_of_reach;  /* the point now served had to be projected */
+    uint32_t clamped;      /* commands out of reach (diagnostic arm_clamped) */
+} xgo_arm_t;
+
 /* The motion core (src/core/motion.h): registers in, twelve joints out. */
 typedef struct xgo_motion_s {
     const xgo_profile_t *profile;
@@ -189,6 +203,7 @@ typedef struct xgo_motion_s {
     xgo_odometry_t odom;      /* world pose from the planted feet */
     xgo_heading_t heading;    /* turn to heading (0x3F) and its origin (0x06) */
     xgo_inertial_t inertial;  /* accelerometer and gyroscope (0x65) */
+    xgo_arm_t arm;            /* the Mini2's arm and claw */
     struct {                  /* last body + leg IK solve (skipped when unchanged) */
         xgo_body_pose_t pose;
         xgo_vec3_t feet[XGO_LEG_COUNT];     /* machine frame, as asked */

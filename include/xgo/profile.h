@@ -1,6 +1,7 @@
 /*
- * xgo/profile.h - the robot models the board can drive (Mini, Lite) as data,
- * and the one place where legs, joints, servos and registers are numbered.
+ * xgo/profile.h - the robot models the board can drive (Mini, Lite, Mini2)
+ * as data, and the one place where legs, joints, servos and registers are
+ * numbered.
  *
  * A profile holds the link geometry the kinematics needs, the joint limits,
  * and the vendor library's byte ranges for the body-pose (0x33..0x38), foot
@@ -19,6 +20,10 @@
  *   0            x1     "lower"      knee
  *   1            x2     "middle"     hip pitch (thigh)
  *   2            x3     "upper"      hip roll (abduction)
+ *
+ * The Mini2's arm (docs/registers.md, "Mini2"): servo 51 the claw, 52 the
+ * elbow, 53 the shoulder, read back at 0x5C, 0x5D, 0x5E (what the vendor
+ * library's read_motor() takes as motors 13..15).
  *
  * Units: lengths in micrometres (_um), angles in millidegrees (_mdeg).
  * Checks: none fail; an unknown model code gives the Mini (documented).
@@ -50,6 +55,13 @@ typedef enum xgo_joint_e {
     XGO_JOINT_COUNT = 3
 } xgo_joint_t;
 
+typedef enum xgo_arm_joint_e {
+    XGO_ARM_CLAW = 0,     /* servo 51 */
+    XGO_ARM_ELBOW = 1,    /* servo 52 */
+    XGO_ARM_SHOULDER = 2, /* servo 53 */
+    XGO_ARM_JOINT_COUNT = 3
+} xgo_arm_joint_t;
+
 typedef enum xgo_axis_e { XGO_AXIS_X = 0, XGO_AXIS_Y = 1, XGO_AXIS_Z = 2, XGO_AXIS_COUNT = 3 } xgo_axis_t;
 
 /* Joints in all: index = 3 * leg + joint, register order 0x50..0x5B. */
@@ -72,8 +84,37 @@ typedef struct xgo_range_s {
     int32_t hi;
 } xgo_range_t;
 
+/* The Mini2's arm: a planar two-link arm on the back, in the body's x-z
+ * plane, and a claw (docs/geometry.md, "Arm", has the sources: the vendor
+ * library's own arm model, arm_init() and arm_pos_update()). Arm frame:
+ * origin on the shoulder axis, x forward, z up (body axes). Joint angles
+ * are servo angles, as the registers carry them; a joint's geometric angle
+ * is its servo angle minus zero_mdeg: shoulder 0 = upper arm straight up,
+ * + tilts it forward; elbow 0 = forearm at right angles to the upper arm,
+ * + turns it down; claw -65 deg = open .. +65 deg = closed. */
+typedef struct xgo_arm_geometry_s {
+    int32_t shoulder_x_um; /* shoulder axis in the body frame (y = 0) */
+    int32_t shoulder_z_um;
+    int32_t upper_um;      /* shoulder axis to elbow axis */
+    int32_t fore_um;       /* elbow axis to the claw point */
+    /* servo angle at the joint's geometric zero, by xgo_arm_joint_t */
+    int32_t zero_mdeg[XGO_ARM_JOINT_COUNT];
+    /* Joint limits and the written servo bytes: 1..255 over these
+     * (servo_set_angle's table), by xgo_arm_joint_t. */
+    xgo_range_t joint_mdeg[XGO_ARM_JOINT_COUNT];
+    /* The read-back bytes (0x5C..0x5E): 0..255 over these (read_motor's
+     * MOTOR_LIMIT[3..5]); angles beyond them read as the end. */
+    xgo_range_t read_mdeg[XGO_ARM_JOINT_COUNT];
+    /* Command registers (vendor ARM_LIMIT): 0x73 x, 0x74 z (arm frame),
+     * 0x76 theta (from straight down, 90 = forward, 180 = up), 0x77 r. */
+    xgo_range_t x_um;
+    xgo_range_t z_um;
+    xgo_range_t theta_mdeg;
+    xgo_range_t r_um;
+} xgo_arm_geometry_t;
+
 typedef struct xgo_profile_s {
-    const char *name; /* "mini", "lite" */
+    const char *name; /* "mini", "lite", "mini2" */
 
     /* Leg geometry (docs/geometry.md, "Leg model"). */
     int32_t thigh_um;        /* L1: hip pitch axis to knee axis */
@@ -99,16 +140,20 @@ typedef struct xgo_profile_s {
     xgo_range_t body_mdeg[XGO_AXIS_COUNT];
     /* Mark time 0x3C: step height of bytes 1..255 (vendor MARK_TIME_LIMIT). */
     xgo_range_t mark_time_um;
+    /* The arm, NULL for a model without one (Mini, Lite). */
+    const xgo_arm_geometry_t *arm;
 } xgo_profile_t;
 
-#define XGO_PROFILE_MINI 0u /* same codes as register 0x02 and xgo_model_t */
+#define XGO_PROFILE_MINI 0u /* same codes as xgo_model_t */
 #define XGO_PROFILE_LITE 1u
+#define XGO_PROFILE_MINI2 2u
 
 const xgo_profile_t *xgo_profile_mini(void);
 const xgo_profile_t *xgo_profile_lite(void);
+const xgo_profile_t *xgo_profile_mini2(void);
 
-/* Profile for a model code (0 Mini, 1 Lite); unknown codes give the Mini,
- * the default. Never NULL. */
+/* Profile for a model code (0 Mini, 1 Lite, 2 Mini2); unknown codes give the
+ * Mini, the default. Never NULL. */
 const xgo_profile_t *xgo_profile_get(unsigned model);
 
 #ifdef __cplusplus

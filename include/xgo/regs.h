@@ -56,6 +56,19 @@ extern "C" {
 #define XGO_REGF_AUTO_CLEAR 0x01u  /* the board acts on a write, then clears it to 0 */
 #define XGO_REGF_COMPUTED 0x02u    /* value produced by the board on read */
 #define XGO_REGF_NONVOLATILE 0x04u /* survives action 255 (reset) */
+#define XGO_REGF_ARM 0x08u         /* only on a model with the arm (Mini2) */
+#define XGO_REGF_NO_ARM 0x10u      /* only on a model without it (Mini, Lite) */
+#define XGO_REGF_AUTO_CLEAR_NO_ARM (XGO_REGF_AUTO_CLEAR | XGO_REGF_NO_ARM)
+
+/* Register 0x02: the model. The seed's MemTable gives 0x02 to the PRO, so
+ * the Mini2 takes the next value. */
+#define XGO_VERSION_MINI 0x00u
+#define XGO_VERSION_LITE 0x01u
+#define XGO_VERSION_MINI2 0x03u
+
+/* The profile (XGO_PROFILE_*, xgo/profile.h) of a 0x02 value; unknown values
+ * give the Mini's. */
+unsigned xgo_version_profile(uint8_t version);
 
 /* Valid sets */
 typedef enum xgo_valid_e {
@@ -123,7 +136,9 @@ typedef enum xgo_valid_e {
     X(SERVO42, 0x5A, 1, RW, 0, 0x80, ANY, 0, 0, "servo42")                              \
     X(SERVO43, 0x5B, 1, RW, 0, 0x80, ANY, 0, 0, "servo43")                              \
     X(SERVO_SPEED, 0x5C, 1, RW, 0, 0x80, ANY, 0, 0, "servo_speed")                      \
-    X(STAND, 0x5D, 1, W, AUTO_CLEAR, 0x00, RANGE, 0, 1, "stand")                        \
+    X(STAND, 0x5D, 1, W, AUTO_CLEAR_NO_ARM, 0x00, RANGE, 0, 1, "stand")                 \
+    X(ARM_ELBOW, 0x5D, 1, RW, ARM, 0x00, ANY, 0, 0, "servo52")                          \
+    X(ARM_SHOULDER, 0x5E, 1, RW, ARM, 0x00, ANY, 0, 0, "servo53")                       \
     X(IMU_MODE, 0x61, 1, RW, 0, 0x00, RANGE, 0, 1, "imu_mode")                          \
     X(IMU_ROLL, 0x62, 1, R, COMPUTED, 0x80, ANY, 0, 0, "imu_roll")                      \
     X(IMU_PITCH, 0x63, 1, R, COMPUTED, 0x80, ANY, 0, 0, "imu_pitch")                    \
@@ -133,6 +148,13 @@ typedef enum xgo_valid_e {
     X(IMU_PITCH16, 0x67, 1, R, COMPUTED, 0x00, ANY, 0, 0, "imu_pitch16")                \
     X(IMU_YAW16, 0x68, 1, R, COMPUTED, 0x00, ANY, 0, 0, "imu_yaw16")                    \
     X(LED, 0x69, 3, RW, 0, 0x00, ANY, 0, 0, "led")                                      \
+    X(CLAW, 0x71, 1, RW, ARM, 0x80, ANY, 0, 0, "claw")                                  \
+    X(ARM_MODE, 0x72, 1, RW, ARM, 0x00, RANGE, 0, 1, "arm_mode")                        \
+    X(ARM_X, 0x73, 1, RW, ARM, 0x00, ANY, 0, 0, "arm_x")                                \
+    X(ARM_Z, 0x74, 1, RW, ARM, 0x00, ANY, 0, 0, "arm_z")                                \
+    X(ARM_SPEED, 0x75, 1, RW, ARM, 0x80, ANY, 0, 0, "arm_speed")                        \
+    X(ARM_THETA, 0x76, 1, RW, ARM, 0x00, ANY, 0, 0, "arm_theta")                        \
+    X(ARM_R, 0x77, 1, RW, ARM, 0x00, ANY, 0, 0, "arm_r")                                \
     X(PERIOD_X, 0x80, 1, RW, 0, 0x00, ANY, 0, 0, "period_x")                            \
     X(PERIOD_Y, 0x81, 1, RW, 0, 0x00, ANY, 0, 0, "period_y")                            \
     X(PERIOD_Z, 0x82, 1, RW, 0, 0x00, ANY, 0, 0, "period_z")                            \
@@ -175,7 +197,8 @@ enum xgo_reg_addr_e {
     X(IGNORED_UNMAPPED, ignored_unmapped, regs.stats.ignored_unmapped)                 \
     X(TX_OVERFLOW, tx_overflow, tx_overflows)                                          \
     X(HANGUP_DISCARDS, hangup_discards, parser.stats.hangup_discards)                  \
-    X(FRAMING_ERRORS, framing_errors, framing_errors)
+    X(FRAMING_ERRORS, framing_errors, framing_errors)                                  \
+    X(ARM_CLAMPED, arm_clamped, motion.arm.clamped)
 
 /* XGO_DIAG_FRAMES_OK == 0, ... */
 typedef enum xgo_diag_e {
@@ -202,7 +225,10 @@ typedef struct xgo_reg_desc_s {
 /* The descriptor table and lookups. */
 size_t xgo_reg_table_size(void);
 const xgo_reg_desc_t *xgo_reg_table_entry(size_t i);
-const xgo_reg_desc_t *xgo_reg_find(uint8_t addr); /* NULL when the Mini lacks addr */
+const xgo_reg_desc_t *xgo_reg_find(uint8_t addr); /* the Mini's; NULL when it lacks addr */
+/* 1 if the table row d exists on a model with (arm = 1) or without the arm:
+ * rows flagged XGO_REGF_ARM / XGO_REGF_NO_ARM are on one of them only. */
+int xgo_reg_for_model(const xgo_reg_desc_t *d, int arm);
 /* Name of the register at addr ("vx", "bt_name[3]" style is the caller's job);
  * "-" when unmapped. */
 const char *xgo_reg_name(uint8_t addr);

@@ -11,10 +11,18 @@
 #include "regfile.h"
 #include "xgo/emulator.h"
 
-/* Firmware strings: the first character selects the vendor library's
- * parameter set ('M' Mini, 'L' Lite); the rest marks an emulator. */
-static const char k_firmware_mini[] = "M-EMU-0.1";
-static const char k_firmware_lite[] = "L-EMU-0.1";
+/* Firmware string and version register 0x02 by xgo_model_t. The string's
+ * first character selects the vendor library's parameter set ('M' Mini,
+ * 'L' Lite, 'W' the Mini2 with its arm, xgomini2sw); the rest marks an
+ * emulator. */
+static const struct {
+    const char *firmware;
+    uint8_t version;
+} k_models[] = {
+    {"M-EMU-0.1", XGO_VERSION_MINI},
+    {"L-EMU-0.1", XGO_VERSION_LITE},
+    {"W-EMU-0.1", XGO_VERSION_MINI2},
+};
 
 static const char *const k_diag_names[XGO_DIAG_COUNT] = {
 #define DIAG_NAME_(id, name, member) #name,
@@ -181,7 +189,7 @@ void xgo_board_init(xgo_board_t *b, const xgo_board_config_t *cfg)
 {
     xgo_parser_sink_t sink;
     XGO_ASSERT(b != NULL);
-    XGO_ASSERT(cfg == NULL || (cfg->model <= XGO_MODEL_LITE && cfg->battery_pct <= 100));
+    XGO_ASSERT(cfg == NULL || (cfg->model <= XGO_MODEL_MINI2 && cfg->battery_pct <= 100));
     memset(b, 0, sizeof *b);
     if (cfg != NULL) {
         b->config = *cfg;
@@ -195,9 +203,10 @@ void xgo_board_init(xgo_board_t *b, const xgo_board_config_t *cfg)
     sink.on_drop = on_drop;
     sink.ctx = b;
     xgo_parser_init(&b->parser, &sink, b->config.parser_timeout_ms);
-    xgo_regs_init(&b->regs,
-                  b->config.model == XGO_MODEL_LITE ? k_firmware_lite : k_firmware_mini,
-                  b->config.model == XGO_MODEL_LITE ? 0x01u : 0x00u);
+    if ((unsigned)b->config.model >= sizeof k_models / sizeof k_models[0]) {
+        b->config.model = XGO_MODEL_MINI;
+    }
+    xgo_regs_init(&b->regs, k_models[b->config.model].firmware, k_models[b->config.model].version);
     xgo_regs_set(&b->regs, XGO_REG_BATTERY, b->config.battery_pct);
     xgo_motion_init(&b->motion, xgo_profile_get((unsigned)b->config.model), b->config.battery_pct);
     xgo_motion_init_registers(&b->motion, &b->regs);
@@ -378,6 +387,28 @@ void xgo_board_imu_mdeg(const xgo_board_t *b, int32_t rpy[3])
 uint8_t xgo_board_battery_pct(const xgo_board_t *b)
 {
     return xgo_battery_percent(&b->motion.battery);
+}
+
+int xgo_board_arm(const xgo_board_t *b, xgo_board_arm_t *out)
+{
+    const xgo_arm_t *a = &b->motion.arm;
+    int32_t ex, ez, cx, cz;
+    if (a->geo == NULL) {
+        return 0;
+    }
+    memcpy(out->joints_mdeg, a->q_mdeg, sizeof out->joints_mdeg);
+    xgo_arm_points(a->geo, a->q_mdeg, &ex, &ez, &cx, &cz);
+    out->shoulder_um.x = a->geo->shoulder_x_um;
+    out->shoulder_um.y = 0;
+    out->shoulder_um.z = a->geo->shoulder_z_um;
+    out->elbow_um = out->shoulder_um;
+    out->elbow_um.x += ex;
+    out->elbow_um.z += ez;
+    out->claw_um = out->shoulder_um;
+    out->claw_um.x += cx;
+    out->claw_um.z += cz;
+    out->out_of_reach = a->out_of_reach;
+    return 1;
 }
 
 void xgo_board_world_pose(const xgo_board_t *b, xgo_world_pose_t *out)

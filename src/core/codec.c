@@ -60,6 +60,24 @@ int32_t xgo_byte_to_range(const xgo_range_t *r, uint8_t b)
     return xgo_sat32((int64_t)r->lo + off);
 }
 
+int32_t xgo_byte_to_range_mid(const xgo_range_t *r, uint8_t b)
+{
+    const int64_t span = (int64_t)r->hi - r->lo;
+    if (span <= 0 || b == 0xFFu) {
+        return span <= 0 ? r->lo : r->hi;
+    }
+    return xgo_sat32((int64_t)r->lo + ((int64_t)(2u * b + 1u) * span + 255) / 510);
+}
+
+int32_t xgo_servo_byte_to_range_mid(const xgo_range_t *r, uint8_t b)
+{
+    const int64_t span = (int64_t)r->hi - r->lo;
+    if (span <= 0 || b == 0u || b == 0xFFu) {
+        return (span <= 0 || b == 0u) ? r->lo : r->hi;
+    }
+    return xgo_sat32((int64_t)r->lo + ((int64_t)(2u * b - 1u) * span + 254) / 508);
+}
+
 uint8_t xgo_joint_to_byte(const xgo_profile_t *p, xgo_joint_t joint, int32_t mdeg)
 {
     return xgo_range_to_byte(&p->joint_mdeg[joint], mdeg);

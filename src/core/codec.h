@@ -54,6 +54,17 @@ extern "C" {
 uint8_t xgo_range_to_byte(const xgo_range_t *r, int32_t v);
 int32_t xgo_byte_to_range(const xgo_range_t *r, uint8_t b);
 
+/* The middle of byte b's step instead of its start: lo + (b + 1/2) * (hi -
+ * lo) / 255, rounded, 0xFF giving hi. For commands whose senders truncate
+ * (the library's int()): the value sent lies in [start, start + step), so
+ * the middle halves the worst error (the Mini2's arm: docs/registers.md). */
+int32_t xgo_byte_to_range_mid(const xgo_range_t *r, uint8_t b);
+
+/* The vendor library's other map, servo_set_angle's: a value in [lo, hi]
+ * is sent as int(1 + 254 * (v - lo) / (hi - lo)), bytes 1..255. Decoded to
+ * the middle of the step; 0 gives lo, 0xFF hi. */
+int32_t xgo_servo_byte_to_range_mid(const xgo_range_t *r, uint8_t b);
+
 /* Signed register byte -> value in [-limit, limit]; 0x7F and 0x80 are both
  * zero (the vendor library sends 0x7F for zero). */
 int32_t xgo_signed_byte_to_value(uint8_t b, int32_t limit);

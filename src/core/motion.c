@@ -61,6 +61,7 @@ void xgo_motion_init(xgo_motion_t *m, const xgo_profile_t *profile, uint8_t batt
     xgo_odometry_init(&m->odom);
     xgo_heading_init(&m->heading);
     xgo_inertial_init(&m->inertial);
+    xgo_arm_init(&m->arm, profile->arm);
     m->contact = 0x0Fu;
     measure_feet(m, 1);
 }
@@ -131,6 +132,7 @@ static void reset_all(xgo_motion_t *m, xgo_regs_t *r)
     memset(m->periodic_phase, 0, sizeof m->periodic_phase);
     memset(m->stab_mdeg, 0, sizeof m->stab_mdeg);
     xgo_heading_init(&m->heading);
+    xgo_arm_reset(&m->arm);
     start_action(m, XGO_ACTION_RESET);
 }
 
@@ -227,7 +229,8 @@ static void take_debug_writes(xgo_motion_t *m, xgo_regs_t *r)
 static int take_action_writes(xgo_motion_t *m, xgo_regs_t *r)
 {
     int reset = 0;
-    if (xgo_regs_take_written(r, XGO_REG_STAND)) {
+    /* (on the Mini2 0x5D is the arm's servo 52: no standing-posture register) */
+    if (!r->arm && xgo_regs_take_written(r, XGO_REG_STAND)) {
         if (xgo_regs_get(r, XGO_REG_STAND) == 1) {
             stop_action(m);
             m->perform = 0;
@@ -284,7 +287,8 @@ static int ends_a_turn(const xgo_regs_t *r)
     unsigned i;
     int any = 0;
     for (i = 0; i < sizeof regs; i++) {
-        any |= xgo_regs_was_written(r, regs[i]);
+        /* on the Mini2 0x5D is an arm servo, no motion command */
+        any |= xgo_regs_was_written(r, regs[i]) && (regs[i] != XGO_REG_STAND || !r->arm);
     }
     return any;
 }
@@ -495,7 +499,7 @@ static void leg_targets(xgo_motion_t *m, const xgo_regs_t *r, int32_t q[XGO_SERV
 
 static int32_t servo_mode_step(const xgo_regs_t *r)
 {
-    const int32_t per_s = xgo_servo_speed_byte_to_mdeg_s(xgo_regs_get(r, XGO_REG_SERVO_SPEED));
+    const int32_t per_s = xgo_servo_speed_byte_to_mdeg_s(xgo_regs_servo_speed(r));
     const int32_t step = per_s / (int32_t)XGO_TICK_HZ;
     return step < 1 ? 1 : step;
 }
@@ -561,6 +565,7 @@ void xgo_motion_publish(const xgo_motion_t *m, xgo_regs_t *r)
     xgo_regs_set_attitude(r, m->imu.roll_mdeg, m->imu.pitch_mdeg, m->imu.yaw_mdeg);
     xgo_regs_set_inertial(r, m->inertial.accel, m->inertial.gyro);
     xgo_regs_set(r, XGO_REG_TURN_TO, xgo_heading_done(&m->heading));
+    xgo_arm_publish(&m->arm, r);
 }
 
 /* The accelerometer and gyroscope see the body where the odometry and the
@@ -607,6 +612,7 @@ void xgo_motion_tick(xgo_motion_t *m, xgo_regs_t *r)
     measure_feet(m, m->mode == XGO_MODE_WHOLE_UNIT || m->mode == XGO_MODE_ACTION);
     xgo_imu_tick(&m->imu, m->pose.roll_mdeg, m->pose.pitch_mdeg, m->pose.yaw_mdeg, yaw_rate);
     inertial_tick(m);
+    xgo_arm_tick(&m->arm, r, &m->pose, &m->stand);
     xgo_battery_tick(&m->battery, busy);
     if (m->mode == XGO_MODE_ACTION && m->action_id == 0) {
         m->mode = m->group_mode;

@@ -24,6 +24,7 @@
 #include <stdint.h>
 
 #include "actions.h"
+#include "arm.h"
 #include "gait.h"
 #include "heading.h"
 #include "inertial.h"

@@ -1,8 +1,10 @@
 /*
- * profile.c - the Mini and Lite profiles (sources of every number:
+ * profile.c - the Mini, Lite and Mini2 profiles (sources of every number:
  * docs/geometry.md) and the leg numbering helpers.
  */
 #include "xgo/profile.h"
+
+#include <stddef.h>
 
 /* Leg geometry of the Mini, from the vendor-derived mini2 URDF
  * (sskorol/xgo_ros urdf/mini2_description.urdf):
@@ -16,6 +18,22 @@
 #define MINI_HIP_X_UM 75000
 #define MINI_HIP_Y_UM 22500
 
+/* The Mini's outline, standing height and register ranges (the Mini2 shares
+ * them: the vendor library picks its Mini parameter set for both). */
+#define MINI_OUTLINE_AND_RANGES                                                  \
+    250000, /* product page: 250 x 150 x 60 mm */                              \
+        150000, 97500, /* middle of the body-height register range 75..120 mm */ \
+        /* vendor library changePara('xgomini'): x1, x2, x3 */                  \
+        {{-73000, 57000}, {-66000, 93000}, {-31000, 31000}},                     \
+        /* foot x, y, z */                                                       \
+        {{-35000, 35000}, {-18000, 18000}, {75000, 115000}},                     \
+        /* body x, y, z */                                                       \
+        {{-35000, 35000}, {-19500, 19500}, {75000, 120000}},                     \
+        /* body roll, pitch, yaw */                                              \
+        {{-20000, 20000}, {-22000, 22000}, {-16000, 16000}},                     \
+        /* mark time step height */                                              \
+        {10000, 35000}
+
 static const xgo_profile_t mini_profile = {
     "mini",
     MINI_THIGH_UM,
@@ -24,19 +42,8 @@ static const xgo_profile_t mini_profile = {
     MINI_ABAD_OFFSET_UM,
     MINI_HIP_X_UM,
     MINI_HIP_Y_UM,
-    250000, /* product page: 250 x 150 x 60 mm */
-    150000,
-    97500, /* middle of the body-height register range 75..120 mm */
-    /* vendor library changePara('xgomini'): x1, x2, x3 */
-    {{-73000, 57000}, {-66000, 93000}, {-31000, 31000}},
-    /* foot x, y, z */
-    {{-35000, 35000}, {-18000, 18000}, {75000, 115000}},
-    /* body x, y, z */
-    {{-35000, 35000}, {-19500, 19500}, {75000, 120000}},
-    /* body roll, pitch, yaw */
-    {{-20000, 20000}, {-22000, 22000}, {-16000, 16000}},
-    /* mark time step height */
-    {10000, 35000},
+    MINI_OUTLINE_AND_RANGES,
+    NULL,
 };
 
 /* No public kinematic model of the Lite exists: its link geometry is
@@ -58,6 +65,45 @@ static const xgo_profile_t lite_profile = {
     {{-25000, 25000}, {-18000, 18000}, {60000, 110000}},
     {{-20000, 20000}, {-10000, 10000}, {-12000, 12000}},
     {10000, 25000},
+    NULL,
+};
+
+/* The Mini2's arm. Link lengths and zero offsets: the vendor library's own
+ * model of it (xgolib 1.1.10 XGO_DOG: arm_init(60, 60) and its offsets
+ * offset1 - 3, offset2 - 11 for servos 53 and 52; arm_pos_update's angle
+ * conventions). Limits and written bytes: its servo_set_angle table
+ * (param_lt, bytes 1..255); read-back bytes: its MOTOR_LIMIT[3..5]
+ * (read_motor). Command ranges: its ARM_LIMIT. Where the arm sits: the
+ * shoulder joint 53 of the mini2 URDF the legs come from, (0.081751, 0,
+ * 0.037854) m from base_link. */
+static const xgo_arm_geometry_t mini2_arm = {
+    81751,
+    37854,
+    60000,
+    60000,
+    {0, -11000, -3000},
+    /* claw 51, elbow 52, shoulder 53 */
+    {{-65000, 65000}, {-50000, 83000}, {-90000, 90000}},
+    {{-65000, 65000}, {-85000, 50000}, {-75000, 90000}},
+    {-80000, 155000},  /* x */
+    {-95000, 155000},  /* z */
+    {70000, 270000},   /* theta */
+    {80000, 140000},   /* r */
+};
+
+/* The Mini2 (the vendor library's xgomini2sw, firmware 'W'): the Mini's
+ * legs and ranges (the library picks its Mini parameter set for it) plus
+ * the arm. */
+static const xgo_profile_t mini2_profile = {
+    "mini2",
+    MINI_THIGH_UM,
+    MINI_SHANK_UM,
+    MINI_KNEE_OFFSET_MDEG,
+    MINI_ABAD_OFFSET_UM,
+    MINI_HIP_X_UM,
+    MINI_HIP_Y_UM,
+    MINI_OUTLINE_AND_RANGES,
+    &mini2_arm,
 };
 
 const xgo_profile_t *xgo_profile_mini(void)
@@ -70,9 +116,16 @@ const xgo_profile_t *xgo_profile_lite(void)
     return &lite_profile;
 }
 
+const xgo_profile_t *xgo_profile_mini2(void)
+{
+    return &mini2_profile;
+}
+
 const xgo_profile_t *xgo_profile_get(unsigned model)
 {
-    return model == XGO_PROFILE_LITE ? &lite_profile : &mini_profile;
+    return model == XGO_PROFILE_LITE    ? &lite_profile
+           : model == XGO_PROFILE_MINI2 ? &mini2_profile
+                                        : &mini_profile;
 }
 
 int xgo_leg_side_x(xgo_leg_t leg)

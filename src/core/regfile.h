@@ -25,7 +25,8 @@
 extern "C" {
 #endif
 
-/* firmware: up to 10 ASCII chars; version: 0x00 Mini, 0x01 Lite. */
+/* firmware: up to 10 ASCII chars; version: XGO_VERSION_* (the Mini2's also
+ * selects the arm's rows of the table). */
 void xgo_regs_init(xgo_regs_t *r, const char *firmware, uint8_t version);
 
 /* Restore every writable, volatile register to its initial value (action 255). */
@@ -57,6 +58,13 @@ void xgo_regs_set_inertial(xgo_regs_t *r, const int16_t accel[3], const int16_t 
 
 /* The heading of the last turn command written to 0x3F, in degrees. */
 int16_t xgo_regs_turn_to_deg(const xgo_regs_t *r);
+
+/* The servo speed the host set at 0x5C. */
+uint8_t xgo_regs_servo_speed(const xgo_regs_t *r);
+
+/* The descriptor at addr for this register file's model (the Mini2 has the
+ * arm's registers where the Mini has others); NULL when unmapped. */
+const xgo_reg_desc_t *xgo_regs_find(const xgo_regs_t *r, uint8_t addr);
 
 /* The last servo-mode command byte written to 0x50 + servo (servo 0..11),
  * the initial 0x80 until then and after a reset. A host cannot read it: a

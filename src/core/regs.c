@@ -10,6 +10,7 @@
 #include "check.h"
 #include "codec.h"
 #include "regfile.h"
+#include "xgo/profile.h"
 
 #define UNMAPPED 0xFFu
 
@@ -36,12 +37,29 @@ const xgo_reg_desc_t *xgo_reg_table_entry(size_t i)
     return i < REG_TABLE_SIZE ? &k_regs[i] : NULL;
 }
 
+unsigned xgo_version_profile(uint8_t version)
+{
+    return version == XGO_VERSION_LITE ? XGO_PROFILE_LITE
+           : version == XGO_VERSION_MINI2 ? XGO_PROFILE_MINI2
+                                          : XGO_PROFILE_MINI;
+}
+
+int xgo_reg_for_model(const xgo_reg_desc_t *d, int arm)
+{
+    return (d->flags & (arm ? XGO_REGF_NO_ARM : XGO_REGF_ARM)) == 0;
+}
+
+static int for_model(const xgo_reg_desc_t *d, int arm)
+{
+    return xgo_reg_for_model(d, arm);
+}
+
 const xgo_reg_desc_t *xgo_reg_find(uint8_t addr)
 {
     size_t i;
     for (i = 0; i < REG_TABLE_SIZE; i++) {
         const xgo_reg_desc_t *d = &k_regs[i];
-        if (addr >= d->addr && (unsigned)addr < (unsigned)d->addr + d->width) {
+        if (for_model(d, 0) && addr >= d->addr && (unsigned)addr < (unsigned)d->addr + d->width) {
             return d;
         }
     }
@@ -113,7 +131,8 @@ static void load_initial(xgo_regs_t *r, int power_up)
     memset(r->servo_cmd, xgo_reg_find(XGO_REG_SERVO11)->initial, sizeof r->servo_cmd);
     for (i = 0; i < REG_TABLE_SIZE; i++) {
         const xgo_reg_desc_t *d = &k_regs[i];
-        if ((d->flags & XGO_REGF_COMPUTED) != 0 || d->access == XGO_ACCESS_R) {
+        if ((d->flags & XGO_REGF_COMPUTED) != 0 || d->access == XGO_ACCESS_R ||
+            !for_model(d, r->arm)) {
             continue;
         }
         if (!power_up && ((d->flags & XGO_REGF_NONVOLATILE) != 0 || is_servo_reg(d->addr))) {
@@ -121,6 +140,7 @@ static void load_initial(xgo_regs_t *r, int power_up)
         }
         memset(&r->mem[d->addr], d->initial, d->width);
     }
+    r->servo_speed = k_regs[r->index[XGO_REG_SERVO_SPEED]].initial;
 }
 
 void xgo_regs_init(xgo_regs_t *r, const char *firmware, uint8_t version)
@@ -130,9 +150,13 @@ void xgo_regs_init(xgo_regs_t *r, const char *firmware, uint8_t version)
 
     memset(r, 0, sizeof *r);
     memset(r->index, UNMAPPED, sizeof r->index);
+    r->arm = version == XGO_VERSION_MINI2;
     /* Walk backwards so that on overlap the earlier table entry wins. */
     for (i = REG_TABLE_SIZE; i-- > 0;) {
         unsigned a;
+        if (!for_model(&k_regs[i], r->arm)) {
+            continue;
+        }
         for (a = k_regs[i].addr; a < (unsigned)k_regs[i].addr + k_regs[i].width; a++) {
             r->index[a] = (uint8_t)i;
         }
@@ -172,6 +196,16 @@ void xgo_regs_set(xgo_regs_t *r, uint8_t addr, uint8_t value)
 static const xgo_reg_desc_t *desc_at(const xgo_regs_t *r, unsigned addr)
 {
     return r->index[addr] == UNMAPPED ? NULL : &k_regs[r->index[addr]];
+}
+
+const xgo_reg_desc_t *xgo_regs_find(const xgo_regs_t *r, uint8_t addr)
+{
+    return desc_at(r, addr);
+}
+
+uint8_t xgo_regs_servo_speed(const xgo_regs_t *r)
+{
+    return r->servo_speed;
 }
 
 /* The turn command at 0x3F is two bytes wide but the foot register 0x40
@@ -245,6 +279,9 @@ static void apply_write(xgo_regs_t *r, uint8_t addr, const uint8_t *data, size_t
         }
         r->mem[a] = data[i];
         mark_written(r, (uint8_t)a);
+        if (a == XGO_REG_SERVO_SPEED) {
+            r->servo_speed = data[i];
+        }
     }
 }
 

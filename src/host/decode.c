@@ -64,7 +64,8 @@ int xgo_host_decode_value(uint8_t addr, uint8_t value, char *out, size_t out_siz
     /* register 0x00, xgo_mode_t order (the view's /meta uses the same words) */
     static const char *const modes[] = {"whole unit", "leg", "servo", "debug", "action",
                                         "calibration"};
-    static const char *const models[] = {"mini", "lite"}; /* 0x02: xgo_model_t */
+    /* 0x02: XGO_VERSION_* (0x02 is the seed's PRO) */
+    static const char *const models[] = {"mini", "lite", "pro", "mini2"};
 
     out[0] = '\0';
     if ((addr >= XGO_REG_VX && addr <= XGO_REG_BODY_YAW) ||
@@ -76,7 +77,7 @@ int xgo_host_decode_value(uint8_t addr, uint8_t value, char *out, size_t out_siz
     case XGO_REG_MODE:
         return xgo_host_decode_choice(value, modes, 6, out, out_size) > 0;
     case XGO_REG_VERSION:
-        return xgo_host_decode_choice(value, models, 2, out, out_size) > 0;
+        return xgo_host_decode_choice(value, models, 4, out, out_size) > 0;
     case XGO_REG_PERFORM:
         return xgo_host_decode_choice(value, perform, 2, out, out_size) > 0;
     case XGO_REG_CALIBRATION:

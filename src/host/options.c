@@ -103,8 +103,10 @@ static xgo_host_apply_t xgo_host_apply_profile(xgo_host_options_t *opts, const c
         opts->board.model = XGO_MODEL_MINI;
     } else if (strcmp(value, "lite") == 0) {
         opts->board.model = XGO_MODEL_LITE;
+    } else if (strcmp(value, "mini2") == 0) {
+        opts->board.model = XGO_MODEL_MINI2;
     } else {
-        snprintf(err, err_size, "--profile must be mini or lite, not '%s'", value);
+        snprintf(err, err_size, "--profile must be mini, lite or mini2, not '%s'", value);
         return XGO_HOST_APPLY_BAD_VALUE;
     }
     return XGO_HOST_APPLY_OK;
@@ -327,7 +329,7 @@ static const xgo_host_option_t xgo_host_option_table[] = {
      "the board's UART runs at N baud (the robot: 115200): a host port set\n"
      "to another speed gets garbled bytes and no answer, framing errors counted",
      xgo_host_apply_uart_baud},
-    {"profile", 0, "MODEL", "board model: mini (default) or lite", xgo_host_apply_profile},
+    {"profile", 0, "MODEL", "board model: mini (default), lite or mini2 (with the arm)", xgo_host_apply_profile},
     {"battery", 0, "PCT", "initial battery level 0..100 (default 100)", xgo_host_apply_battery},
     {"timeout-ms", 0, "N", "abandon a partial frame after N ms of silence, 0 = never (default 20)",
      xgo_host_apply_timeout},

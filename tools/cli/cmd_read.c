@@ -91,14 +91,19 @@ int xgo_cli_cmd_read(xgo_cli_t *cli, int argc, char **argv)
 int xgo_cli_cmd_dump(xgo_cli_t *cli, int argc, char **argv)
 {
     xgo_host_json_t *json;
+    const xgo_profile_t *p;
     size_t i;
     (void)argv;
     if (argc != 1) {
         return xgo_cli_usage_error("dump takes no arguments");
     }
+    p = xgo_cli_profile(cli); /* the rows of the board's model */
     json = xgo_cli_json_registers(cli);
     for (i = 0; i < xgo_reg_table_size(); i++) {
         uint8_t addr = xgo_reg_table_entry(i)->addr;
+        if (!xgo_reg_for_model(xgo_reg_table_entry(i), p != NULL && p->arm != NULL)) {
+            continue; /* the other model's row at that address (0x5D: stand / servo52) */
+        }
         if (xgo_cli_read_show(cli, addr, xgo_cli_default_count(addr), json) != 0) {
             return xgo_cli_finish_json(cli, json, 1);
         }

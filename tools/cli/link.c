@@ -265,6 +265,6 @@ const xgo_profile_t *xgo_cli_profile(xgo_cli_t *cli)
     if (xgo_cli_read(cli, XGO_REG_VERSION, 1, &version) != 0) {
         return NULL;
     }
-    cli->profile = xgo_profile_get(version);
+    cli->profile = xgo_profile_get(xgo_version_profile(version));
     return cli->profile;
 }

@@ -66,7 +66,7 @@ static void xgo_cli_usage(FILE *out)
           "      --timeout MS  wait this long for a reply (default 1000)\n"
           "      --json        one JSON object on stdout per command\n"
           "      --capture F   record every byte sent and received in F (pcap)\n"
-          "      --profile M   mini or lite for unit conversions (default: ask the board)\n"
+          "      --profile M   mini, lite or mini2 for unit conversions (default: ask the board)\n"
           "  -h, --help        this help;  --version  the version\n"
           "\n"
           "commands:\n",
@@ -155,10 +155,12 @@ static int xgo_cli_global_option(xgo_cli_t *cli, int argc, char **argv, int *i)
         cli->timeout_ms = n;
     } else if (strcmp(o, "--capture") == 0) {
         cli->capture = v;
-    } else if (strcmp(v, "mini") == 0 || strcmp(v, "lite") == 0) {
-        cli->profile = xgo_profile_get(v[0] == 'm' ? XGO_MODEL_MINI : XGO_MODEL_LITE);
+    } else if (strcmp(v, "mini") == 0 || strcmp(v, "lite") == 0 || strcmp(v, "mini2") == 0) {
+        cli->profile = xgo_profile_get(strcmp(v, "lite") == 0    ? XGO_MODEL_LITE
+                                       : strcmp(v, "mini2") == 0 ? XGO_MODEL_MINI2
+                                                                 : XGO_MODEL_MINI);
     } else {
-        return xgo_cli_usage_error("--profile must be mini or lite, not '%s'", v);
+        return xgo_cli_usage_error("--profile must be mini, lite or mini2, not '%s'", v);
     }
     return 0;
 }
