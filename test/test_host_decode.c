@@ -29,16 +29,30 @@ static const char *words(uint8_t addr, uint8_t value)
     return out;
 }
 
+/* One register value and the words --trace shows for it ("" = none). */
+typedef struct case_s {
+    uint8_t addr, value;
+    const char *words;
+} case_t;
+
+static void check_cases(const case_t *c, size_t n)
+{
+    size_t i;
+    for (i = 0; i < n; i++) {
+        TEST_ASSERT_EQUAL_STRING(c[i].words, words(c[i].addr, c[i].value));
+    }
+}
+
 static void test_action_words_are_the_core_names_for_every_preset(void)
 {
+    static const case_t cases[] = {
+        {XGO_REG_ACTION, 0, "default stance"}, {XGO_REG_ACTION, 1, "lie down"},
+        {XGO_REG_ACTION, 19, "shake hands"},   {XGO_REG_ACTION, 20, "chicken head"},
+        {XGO_REG_ACTION, 24, "naughty"},       {XGO_REG_ACTION, 255, "reset"},
+        {XGO_REG_ACTION, 25, "action 25"},
+    };
     unsigned id;
-    TEST_ASSERT_EQUAL_STRING("default stance", words(XGO_REG_ACTION, 0));
-    TEST_ASSERT_EQUAL_STRING("lie down", words(XGO_REG_ACTION, 1));
-    TEST_ASSERT_EQUAL_STRING("shake hands", words(XGO_REG_ACTION, 19));
-    TEST_ASSERT_EQUAL_STRING("chicken head", words(XGO_REG_ACTION, 20));
-    TEST_ASSERT_EQUAL_STRING("naughty", words(XGO_REG_ACTION, 24));
-    TEST_ASSERT_EQUAL_STRING("reset", words(XGO_REG_ACTION, 255));
-    TEST_ASSERT_EQUAL_STRING("action 25", words(XGO_REG_ACTION, 25));
+    check_cases(cases, sizeof cases / sizeof cases[0]);
     for (id = 1; id <= XGO_ACTION_LAST; id++) {
         TEST_ASSERT_EQUAL_STRING(xgo_action_name((uint8_t)id), words(XGO_REG_ACTION, (uint8_t)id));
     }
@@ -46,15 +60,14 @@ static void test_action_words_are_the_core_names_for_every_preset(void)
 
 static void test_unload_words_cover_the_register_set(void)
 {
+    static const case_t cases[] = {
+        {XGO_REG_UNLOAD, 0x00, "all servos loaded"}, {XGO_REG_UNLOAD, 0x01, "unload all servos"},
+        {XGO_REG_UNLOAD, 0x11, "unload leg 1"},      {XGO_REG_UNLOAD, 0x14, "unload leg 4"},
+        {XGO_REG_UNLOAD, 0x22, "load leg 2"},        {XGO_REG_UNLOAD, 0x24, "load leg 4"},
+        {XGO_REG_UNLOAD, 0x15, "invalid"},           {XGO_REG_UNLOAD, 0x02, "invalid"},
+    };
     unsigned v, valid = 0;
-    TEST_ASSERT_EQUAL_STRING("all servos loaded", words(XGO_REG_UNLOAD, 0x00));
-    TEST_ASSERT_EQUAL_STRING("unload all servos", words(XGO_REG_UNLOAD, 0x01));
-    TEST_ASSERT_EQUAL_STRING("unload leg 1", words(XGO_REG_UNLOAD, 0x11));
-    TEST_ASSERT_EQUAL_STRING("unload leg 4", words(XGO_REG_UNLOAD, 0x14));
-    TEST_ASSERT_EQUAL_STRING("load leg 2", words(XGO_REG_UNLOAD, 0x22));
-    TEST_ASSERT_EQUAL_STRING("load leg 4", words(XGO_REG_UNLOAD, 0x24));
-    TEST_ASSERT_EQUAL_STRING("invalid", words(XGO_REG_UNLOAD, 0x15));
-    TEST_ASSERT_EQUAL_STRING("invalid", words(XGO_REG_UNLOAD, 0x02));
+    check_cases(cases, sizeof cases / sizeof cases[0]);
     /* exactly the values the register file accepts have words */
     for (v = 0; v < 256; v++) {
         const int has_words = strcmp(words(XGO_REG_UNLOAD, (uint8_t)v), "invalid") != 0;
@@ -66,15 +79,14 @@ static void test_unload_words_cover_the_register_set(void)
 
 static void test_centred_and_choice_words(void)
 {
-    TEST_ASSERT_EQUAL_STRING("0%", words(XGO_REG_VX, 0x80));
-    TEST_ASSERT_EQUAL_STRING("0%", words(XGO_REG_VX, 0x7F));
-    TEST_ASSERT_EQUAL_STRING("+100%", words(XGO_REG_VX, 0xFF));
-    TEST_ASSERT_EQUAL_STRING("-100%", words(XGO_REG_SERVO43, 0x00));
-    TEST_ASSERT_EQUAL_STRING("slow_trot", words(XGO_REG_GAIT_TYPE, 3));
-    TEST_ASSERT_EQUAL_STRING("invalid", words(XGO_REG_GAIT_TYPE, 4));
-    TEST_ASSERT_EQUAL_STRING("off", words(XGO_REG_PERIOD_X, 0));
-    TEST_ASSERT_EQUAL_STRING("", words(XGO_REG_PERIOD_X, 9)); /* the raw value says it all */
-    TEST_ASSERT_EQUAL_STRING("", words(XGO_REG_BATTERY, 50));
+    static const case_t cases[] = {
+        {XGO_REG_VX, 0x80, "0%"},          {XGO_REG_VX, 0x7F, "0%"},
+        {XGO_REG_VX, 0xFF, "+100%"},       {XGO_REG_SERVO43, 0x00, "-100%"},
+        {XGO_REG_GAIT_TYPE, 3, "slow_trot"}, {XGO_REG_GAIT_TYPE, 4, "invalid"},
+        {XGO_REG_PERIOD_X, 0, "off"},      {XGO_REG_PERIOD_X, 9, ""}, /* the raw value says it all */
+        {XGO_REG_BATTERY, 50, ""},
+    };
+    check_cases(cases, sizeof cases / sizeof cases[0]);
 }
 
 int main(void)

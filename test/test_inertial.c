@@ -9,7 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "board_io.h"
+#include "board_unity.h"
 #include "unity.h"
 #include "xgo/board.h"
 #include "xgo/emulator.h"
@@ -186,11 +186,7 @@ static block_t read_block(void)
 
 static float read_float(uint8_t addr)
 {
-    uint8_t b[4];
-    float f;
-    TEST_ASSERT_EQUAL_INT(XGO_TEST_REPLY_OK, xgo_test_read(&board, addr, 4, 0, b));
-    memcpy(&f, b, 4);
-    return f;
+    return xgo_test_rd_float(&board, addr);
 }
 
 static int16_t read_int16_be(uint8_t addr)

@@ -9,7 +9,7 @@
 #include <string.h>
 
 #include "actions.h" /* xgo_action_duration_ticks, xgo_action_next_in_cycle */
-#include "board_io.h"
+#include "board_unity.h"
 #include "codec.h"
 #include "gait.h"   /* XGO_GAIT_STOP_TICKS_MAX */
 #include "motion.h" /* XGO_JOINT_STEP_MAX_MDEG */
@@ -28,32 +28,11 @@ void tearDown(void)
 {
 }
 
-static void wr(uint8_t addr, uint8_t v)
-{
-    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_board_write(&board, XGO_SOURCE_CLI, addr, &v, 1));
-}
-
-static uint8_t rd(uint8_t addr)
-{
-    uint8_t v;
-    TEST_ASSERT_EQUAL_INT(XGO_TEST_REPLY_OK, xgo_test_read(&board, addr, 1, 0, &v));
-    return v;
-}
-
-/* The float the vendor library's read_roll/pitch/yaw would decode. */
-static double rd_angle(uint8_t addr)
-{
-    uint8_t b[4];
-    float f;
-    TEST_ASSERT_EQUAL_INT(XGO_TEST_REPLY_OK, xgo_test_read(&board, addr, 4, 0, b));
-    memcpy(&f, b, 4);
-    return f;
-}
-
-static void ticks(unsigned n)
-{
-    xgo_test_ticks(&board, n);
-}
+/* Writes, reads and ticks as a host would (test/support/board_unity.h). */
+#define wr(addr, v) xgo_test_wr(&board, (addr), (v))
+#define rd(addr) xgo_test_rd(&board, (addr))
+#define rd_angle(addr) xgo_test_rd_float(&board, (addr)) /* read_roll/pitch/yaw's float */
+#define ticks(n) xgo_test_ticks(&board, (n))
 
 /* Vendor encoding of a value in [-limit, limit] (what xgolib sends). */
 static uint8_t vendor_byte(double v, double limit)

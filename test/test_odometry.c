@@ -9,7 +9,7 @@
 #include <string.h>
 
 #include "actions.h" /* xgo_action_duration_ticks */
-#include "board_io.h"
+#include "board_unity.h"
 #include "codec.h"
 #include "unity.h"
 #include "xgo/board.h"
@@ -26,15 +26,9 @@ void tearDown(void)
 {
 }
 
-static void wr(uint8_t addr, uint8_t v)
-{
-    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_board_write(&board, XGO_SOURCE_CLI, addr, &v, 1));
-}
-
-static void ticks(unsigned n)
-{
-    xgo_test_ticks(&board, n);
-}
+/* Writes and ticks as a host would (test/support/board_unity.h). */
+#define wr(addr, v) xgo_test_wr(&board, (addr), (v))
+#define ticks(n) xgo_test_ticks(&board, (n))
 
 static xgo_world_pose_t world(void)
 {

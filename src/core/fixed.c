@@ -275,6 +275,21 @@ int32_t xgo_bam_signed(xgo_bam_t a)
     return -(int32_t)(0xFFFFFFFFu - a) - 1;
 }
 
+int32_t xgo_wrap_mdeg(int32_t mdeg)
+{
+    int32_t v = mdeg;
+    if (v < -900000 || v >= 900000) {
+        v %= 360000; /* far away: one remainder (truncating) first */
+    }
+    while (v >= 180000) {
+        v -= 360000;
+    }
+    while (v < -180000) {
+        v += 360000;
+    }
+    return v;
+}
+
 int32_t xgo_bam_to_mdeg(xgo_bam_t a)
 {
     int64_t p = xgo_mul_wide(xgo_bam_signed(a), XGO_MDEG_PER_TURN); /* |p| < 2^50 */

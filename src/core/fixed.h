@@ -112,6 +112,10 @@ int32_t xgo_bam_to_mdeg(xgo_bam_t a);
 /* The binary angle as a signed value in [-2^31, 2^31) (portable cast). */
 int32_t xgo_bam_signed(xgo_bam_t a);
 
+/* An angle in mdeg wrapped into [-180000, 180000); any int32 input. Angles
+ * within a few turns (the usual case) cost two compares, no division. */
+int32_t xgo_wrap_mdeg(int32_t mdeg);
+
 /* ------------------------------------------------------------ trigonometry */
 
 /* sin and cos of a binary angle, Q30, clamped to [-1, 1]. Exact at 0, 90,

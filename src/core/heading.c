@@ -5,18 +5,6 @@
 
 #include "fixed.h"
 
-/* Wrap an angle difference (|a| < 2 turns) into [-180000, 180000). */
-static int32_t wrap_mdeg(int32_t a)
-{
-    while (a >= 180000) {
-        a -= 360000;
-    }
-    while (a < -180000) {
-        a += 360000;
-    }
-    return a;
-}
-
 void xgo_heading_init(xgo_heading_t *h)
 {
     h->origin_mdeg = 0;
@@ -26,14 +14,14 @@ void xgo_heading_init(xgo_heading_t *h)
 
 void xgo_heading_set_origin(xgo_heading_t *h, int32_t yaw_mdeg)
 {
-    h->origin_mdeg = wrap_mdeg(yaw_mdeg);
+    h->origin_mdeg = xgo_wrap_mdeg(yaw_mdeg);
 }
 
 void xgo_heading_start(xgo_heading_t *h, int32_t heading_deg)
 {
     /* an int16 of degrees is at most 91 turns: reduce before scaling */
     const int32_t turns_removed = heading_deg % 360;
-    h->target_mdeg = wrap_mdeg(h->origin_mdeg + wrap_mdeg(turns_removed * 1000));
+    h->target_mdeg = xgo_wrap_mdeg(h->origin_mdeg + xgo_wrap_mdeg(turns_removed * 1000));
     h->state = XGO_HEADING_TURNING;
 }
 
@@ -67,7 +55,7 @@ static int32_t profile_rate(int32_t error_mdeg)
 
 int32_t xgo_heading_tick(xgo_heading_t *h, int32_t yaw_mdeg, int32_t produced_mdeg_s)
 {
-    const int32_t error = wrap_mdeg(h->target_mdeg - wrap_mdeg(yaw_mdeg));
+    const int32_t error = xgo_wrap_mdeg(h->target_mdeg - xgo_wrap_mdeg(yaw_mdeg));
     const int32_t abs_error = error < 0 ? -error : error;
     switch ((xgo_heading_state_t)h->state) {
     case XGO_HEADING_TURNING:

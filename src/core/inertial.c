@@ -34,18 +34,6 @@ static int16_t to_lsb(int32_t q8)
     return (int16_t)(v > 32767 ? 32767 : (v < -32768 ? -32768 : v));
 }
 
-/* Wrap an angle difference into [-180000, 180000). */
-static int32_t wrap_mdeg(int32_t a)
-{
-    while (a >= 180000) {
-        a -= 360000;
-    }
-    while (a < -180000) {
-        a += 360000;
-    }
-    return a;
-}
-
 /* a * q30 value, result in the unit of a */
 static int32_t mul_q30(int32_t a, xgo_q30_t c)
 {
@@ -119,7 +107,7 @@ void xgo_inertial_tick(xgo_inertial_t *s, const int64_t body_q8[3], xgo_bam_t he
     for (i = 0; i < 3; i++) {
         const int64_t d2 = body_q8[i] - 2 * s->pos_q8[0][i] + s->pos_q8[1][i];
         a_q8[i] = (int32_t)((xgo_mul_wide(clamp32(d2, D2_LIMIT_Q8), ACCEL_Q16) + 32768) >> 16);
-        d[i] = wrap_mdeg(att_mdeg[i] - s->att_mdeg[i]);
+        d[i] = xgo_wrap_mdeg(att_mdeg[i] - s->att_mdeg[i]);
     }
     specific_force(a_q8, heading, att_mdeg, f);
     body_rates(d, att_mdeg, w);

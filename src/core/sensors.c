@@ -5,6 +5,7 @@
 
 #include <string.h>
 
+#include "fixed.h" /* xgo_wrap_mdeg */
 #include "wide.h"
 
 #define FULL_UPCT 100000000u
@@ -91,16 +92,9 @@ void xgo_imu_reset_yaw(xgo_imu_t *imu)
 static int32_t wrap_mdeg(int64_t a)
 {
     if (a >= -900000 && a < 900000) {
-        /* the usual case (an angle plus a small offset): at most two
-         * turns to remove, in 32 bits instead of a 64-bit remainder */
-        int32_t v = (int32_t)a;
-        while (v >= 180000) {
-            v -= 360000;
-        }
-        while (v < -180000) {
-            v += 360000;
-        }
-        return v;
+        /* the usual case (an angle plus a small offset): in 32 bits
+         * instead of a 64-bit remainder */
+        return xgo_wrap_mdeg((int32_t)a);
     }
     a %= 360000;
     if (a >= 180000) {
