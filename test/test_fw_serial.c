@@ -1,9 +1,11 @@
 /*
- * test_fw_serial CHIP [smoke]: the board's firmware (ports/) running in QEMU through
+ * test_fw_serial CHIP [smoke] | --port PATH: the board's firmware (ports/) running in QEMU through
  * tools/mcu/serve.sh CHIP (stm32 or nrf51), checked over its serial line as
  * a host sees it: the spec's examples byte for byte, garbage then a request,
  * back-to-back requests in one write, the non-volatile data surviving a
  * restart (serve.sh --state), and serve.sh's --link rules and clean exit.
+ * With --port PATH only the wire checks run, against a board already
+ * serving on PATH.
  *
  * Real time (the firmware ticks at 500 Hz of wall time); every wait is
  * bounded. The first start builds the firmware (into $XGO_FW_BUILD).
@@ -35,6 +37,7 @@
 #define SYNC_TRIES 20
 
 static const char *g_chip = "stm32";
+static const char *g_ready_port; /* --port PATH: a board already serving there */
 static xgo_test_emu_t g_fw;
 static int g_port = -1;
 static char g_dir[64];
@@ -87,7 +90,14 @@ static void fw_start(void)
 {
     char target[256];
     ssize_t len;
-    int r = fw_try_start(NULL, NULL);
+    int r;
+    if (g_ready_port != NULL) {
+        g_port = xgo_test_port_open_like_pyserial(g_ready_port, B115200);
+        TEST_ASSERT_TRUE_MESSAGE(g_port >= 0, "cannot open the board's port");
+        fw_sync();
+        return;
+    }
+    r = fw_try_start(NULL, NULL);
     if (r != XGO_TEST_EMU_PTY_OK) {
         (void)xgo_test_emu_wait(&g_fw, EXIT_TIMEOUT_MS);
         fprintf(stderr, "serve.sh stderr:\n%s\n", g_fw.err);
@@ -110,6 +120,9 @@ static void fw_stop_cleanly(void)
     if (g_port >= 0) {
         close(g_port);
         g_port = -1;
+    }
+    if (g_ready_port != NULL) {
+        return; /* not ours to stop */
     }
     TEST_ASSERT_EQUAL_INT(0, kill(g_fw.pid, SIGTERM));
     TEST_ASSERT_TRUE_MESSAGE(xgo_test_emu_wait(&g_fw, EXIT_TIMEOUT_MS), "serve.sh ignored SIGTERM");
@@ -317,6 +330,16 @@ static void test_misuse_exits_2_with_usage(void)
 
 int main(int argc, char **argv)
 {
+    if (argc == 3 && strcmp(argv[1], "--port") == 0) {
+        /* The wire checks only, against a board serving on argv[2] (CI:
+         * the firmware that the vendor library has just been run against). */
+        g_ready_port = argv[2];
+        UNITY_BEGIN();
+        RUN_TEST(test_spec_examples_byte_for_byte);
+        RUN_TEST(test_garbage_then_a_request_gets_its_reply);
+        RUN_TEST(test_back_to_back_requests_all_answered_in_order);
+        return UNITY_END();
+    }
     if (argc > 1) {
         g_chip = argv[1];
     }

@@ -1,9 +1,20 @@
 #!/usr/bin/env python3
-"""xgolib_compat.py XGO_EMU: the vendor's Python library, unmodified, against
-xgo-emu's pty.
+"""xgolib_compat.py XGO_EMU | --port PATH [--battery PCT] --nv-file FILE:
+the vendor's Python library, unmodified, against xgo-emu's pty, or against a
+board that is already serving on PATH (the firmware in QEMU:
+tools/mcu/serve.sh stm32 --link PATH --state FILE).
 
     python3 test/xgolib_compat.py build/xgo-emu        # needs xgolib + pyserial
     pip install xgolib==1.1.10 pyserial                 # e.g. in a venv
+    python3 test/xgolib_compat.py --port /tmp/xgo-fw --nv-file /tmp/fw-flash.bin
+
+With --port the same checks run against that board, with two differences
+that follow from it not being an emulator we start: the battery must read
+--battery PCT (default 100, what the firmware starts with) instead of the
+87 % given to xgo-emu, and bt_rename must reach the board's non-volatile
+store FILE (the firmware's 72-byte flash record, ports/cortex-m/nv_file.h)
+instead of xgo-emu's --state file. The tilted-ground check needs xgo-emu's
+--ground-tilt input and is reported as SKIP (not counted) with --port.
 
 Every library call of the issue is exercised with an assertion on what the
 board does (registers read back over the wire, joint angles, IMU). Each check
@@ -169,9 +180,9 @@ def check_firmware(dog):
 
 
 @check("read_battery")
-def check_battery(dog):
+def check_battery(dog, want):
     pct = dog.read_battery()
-    expect(pct == BATTERY, "battery %r, want %d (--battery)" % (pct, BATTERY))
+    expect(pct == want, "battery %r, want %d (--battery)" % (pct, want))
     return "%d %%" % pct
 
 
@@ -410,14 +421,32 @@ def check_unload(dog):
     return "0x20 = %s" % ["0x%02X" % v for v in seen]
 
 
+def read_bytes(path):
+    try:
+        with open(path, "rb") as f:
+            return f.read()
+    except OSError:
+        return b""
+
+
+def state_says_rex(board):
+    """The board's non-volatile store holds the name Rex: xgo-emu's --state
+    text, or the firmware's flash record (magic, version 1, name at 8)."""
+    data = read_bytes(board.nv_path)
+    if board.kind == "emu":
+        return b"bt_name=Rex\n" in data
+    return data[:5] == b"XGNV\x01" and data[8:18] == b"Rex" + bytes(7)
+
+
 @check("bt_rename")
-def check_bt_rename(dog, state_path):
+def check_bt_rename(dog, board):
     dog.bt_rename("Rex")
     name = raw_read(dog, 0x13, 10)
     expect(name == b"Rex" + bytes(7), "0x13..0x1C = %r" % name)
-    saved = wait_until(lambda: "bt_name=Rex\n" in open(state_path).read(), 1.0)
-    expect(saved, "state file not updated: %r" % open(state_path).read())
-    return "0x13 = %r, --state file says bt_name=Rex" % name.rstrip(b"\0")
+    saved = wait_until(lambda: state_says_rex(board), 1.0)
+    expect(saved, "non-volatile store %s not updated: %r" % (board.nv_path,
+                                                            read_bytes(board.nv_path)))
+    return "0x13 = %r, %s says bt_name=Rex" % (name.rstrip(b"\0"), board.nv_path)
 
 
 @check("imu")
@@ -469,44 +498,78 @@ def check_perform(dog):
         on, off, action, moving)
 
 
-def main(argv):
-    if len(argv) != 2:
-        print("usage: xgolib_compat.py XGO_EMU", file=sys.stderr)
-        return 2
-    exe = argv[1]
-    workdir = tempfile.mkdtemp(prefix="xgolib-compat-")
-    state_path = os.path.join(workdir, "state")
-    emu = Emu(exe, workdir, "--battery", str(BATTERY), "--state", state_path)
+class Board:
+    """What the checks talk to: an xgo-emu we start, or a ready port."""
+
+    def __init__(self, kind, link, battery, nv_path):
+        self.kind = kind
+        self.link = link
+        self.battery = battery
+        self.nv_path = nv_path
+
+
+def sync(link, timeout_s=10.0):
+    """Sends a read request until it is answered: a board that just started
+    may have missed the first bytes (docs/mcu.md). Returns True when it was."""
+    port = serial.Serial(link, 115200, timeout=0.2)
     try:
-        check_factory(emu.link)
-        dog = XGO_DOG(emu.link, 115200, version="xgomini")
-        check_firmware(dog)
-        check_battery(dog)
-        check_rest_attitude(dog)
-        check_attitude(dog)
-        check_translation(dog)
-        check_turn(dog)
-        check_move(dog)
-        check_mark_time(dog)
-        check_pace(dog)
-        check_gait_type(dog)
-        check_motor(dog)
-        check_motor_burst(dog)
-        check_motor_speed(dog)
-        check_leg(dog)
-        check_action(dog)
-        check_reset(dog)
-        check_unload(dog)
-        check_bt_rename(dog, state_path)
-        check_imu(dog)
-        check_perform(dog)
-        dog.ser.close()
+        deadline = time.monotonic() + timeout_s
+        while time.monotonic() < deadline:
+            port.reset_input_buffer()
+            port.write(bytes([0x55, 0x00, 0x09, 0x02, 0x02, 0x01, 0xF1, 0x00, 0xAA]))
+            if len(port.read(9)) == 9:
+                time.sleep(0.3)  # earlier tries may still be answered
+                port.reset_input_buffer()
+                return True
+        return False
     finally:
-        rc = emu.stop()
-    if rc != 0:
-        RESULTS.append(("xgo-emu exit status", False, "exit %s, stderr in %s" % (rc, emu.err_path)))
-        print("FAIL xgo-emu exited %s" % rc)
-    check_imu_tilt(exe, workdir)
+        port.close()
+
+
+def run_checks(board):
+    check_factory(board.link)
+    dog = XGO_DOG(board.link, 115200, version="xgomini")
+    check_firmware(dog)
+    check_battery(dog, board.battery)
+    check_rest_attitude(dog)
+    check_attitude(dog)
+    check_translation(dog)
+    check_turn(dog)
+    check_move(dog)
+    check_mark_time(dog)
+    check_pace(dog)
+    check_gait_type(dog)
+    check_motor(dog)
+    check_motor_burst(dog)
+    check_motor_speed(dog)
+    check_leg(dog)
+    check_action(dog)
+    check_reset(dog)
+    check_unload(dog)
+    check_bt_rename(dog, board)
+    check_imu(dog)
+    check_perform(dog)
+    dog.ser.close()
+
+
+USAGE = "usage: xgolib_compat.py XGO_EMU | --port PATH [--battery PCT] --nv-file FILE"
+
+
+def parse_port_args(args):
+    """--port PATH [--battery PCT] --nv-file FILE -> Board, or None."""
+    opts = {"--port": None, "--battery": "100", "--nv-file": None}
+    if len(args) % 2 != 0:
+        return None
+    for name, value in zip(args[::2], args[1::2]):
+        if name not in opts:
+            return None
+        opts[name] = value
+    if opts["--port"] is None or opts["--nv-file"] is None or not opts["--battery"].isdigit():
+        return None
+    return Board("port", opts["--port"], int(opts["--battery"]), opts["--nv-file"])
+
+
+def report(workdir):
     failed = [name for name, ok, _ in RESULTS if not ok]
     print("%d/%d checks passed%s" % (len(RESULTS) - len(failed), len(RESULTS),
                                      "; failed: " + ", ".join(failed) if failed else ""))
@@ -515,6 +578,37 @@ def main(argv):
     else:
         print("emulator logs kept in %s" % workdir)
     return 1 if failed else 0
+
+
+def main(argv):
+    if len(argv) >= 2 and argv[1] == "--port":
+        board = parse_port_args(argv[1:])
+        if board is None:
+            print(USAGE, file=sys.stderr)
+            return 2
+        if not sync(board.link):
+            print("FAIL the board on %s never answered a read request" % board.link)
+            return 1
+        workdir = tempfile.mkdtemp(prefix="xgolib-compat-")
+        run_checks(board)
+        print("SKIP imu levels a tilted ground: needs xgo-emu's --ground-tilt input")
+        return report(workdir)
+    if len(argv) != 2 or argv[1].startswith("-"):
+        print(USAGE, file=sys.stderr)
+        return 2
+    exe = argv[1]
+    workdir = tempfile.mkdtemp(prefix="xgolib-compat-")
+    state_path = os.path.join(workdir, "state")
+    emu = Emu(exe, workdir, "--battery", str(BATTERY), "--state", state_path)
+    try:
+        run_checks(Board("emu", emu.link, BATTERY, state_path))
+    finally:
+        rc = emu.stop()
+    if rc != 0:
+        RESULTS.append(("xgo-emu exit status", False, "exit %s, stderr in %s" % (rc, emu.err_path)))
+        print("FAIL xgo-emu exited %s" % rc)
+    check_imu_tilt(exe, workdir)
+    return report(workdir)
 
 
 if __name__ == "__main__":

@@ -18,7 +18,8 @@ options:
                       at PATH is refused (exit 1)
       --state FILE    the board's non-volatile data (Bluetooth name, zero offsets) in
                       FILE, QEMU's stand-in for flash (ports/cortex-m/nv_file.h)
-      --monitor SOCK  QEMU's monitor on the unix socket SOCK (tools/mcu/fw_stack.sh)
+      --monitor PATH  QEMU's monitor on the FIFOs PATH.in / PATH.out, created here
+                      (tools/mcu/fw_stack.sh reads the stack depth through it)
   -h, --help          show this help and exit
 
 exit status: 0 after SIGINT/SIGTERM, 1 on a runtime error (build, QEMU, link),
@@ -96,7 +97,12 @@ trap on_signal INT TERM HUP
 sh_config="enable=on,target=native,arg=xgo-fw"
 [ -n "$state" ] && sh_config="$sh_config,arg=$state"
 mon=(-monitor none)
-[ -n "$monitor" ] && mon=(-monitor "unix:$monitor,server,nowait")
+if [ -n "$monitor" ]; then
+  for f in "$monitor.in" "$monitor.out"; do
+    [ -p "$f" ] || mkfifo -m 600 -- "$f" || { cleanup_log; die "--monitor: cannot create the FIFO $f"; }
+  done
+  mon=(-monitor "pipe:$monitor")
+fi
 qemu-system-arm -M "$machine" -nographic "${mon[@]}" -serial pty \
   -semihosting-config "$sh_config" -kernel "$elf" >"$log/qemu" 2>&1 &
 qemu_pid=$!
