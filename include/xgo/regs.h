@@ -75,7 +75,7 @@ typedef enum xgo_valid_e {
     XGO_VALID_ANY = 0,
     XGO_VALID_RANGE,  /* lo..hi inclusive */
     XGO_VALID_UNLOAD, /* xgo_unload_decode() accepts it */
-    XGO_VALID_ACTION, /* 0..XGO_ACTION_LAST, XGO_ACTION_RESET (xgo/actions.h) */
+    XGO_VALID_ACTION, /* 0..XGO_ACTION_LAST, XGO_ACTION_RESET (below) */
     XGO_VALID_ASCII   /* printable ASCII 0x20..0x7E */
 } xgo_valid_t;
 

@@ -73,7 +73,7 @@ typedef struct action_s {
 #define CHECK_TABLE(t, m) typedef char t##_whole_frames[(sizeof(t) % (1u + NCH(m))) == 0u ? 1 : -1]
 
 /* ------------------------------------------------------------ tables
- * Conventions (xgo/actions.h): x forward, y left, z up; roll + lifts the
+ * Conventions (actions.h): x forward, y left, z up; roll + lifts the
  * left side, pitch + lowers the nose, yaw + turns left. Legs: LF RF RH LH. */
 
 /* 1 lie down, 3 s: hind end first, body down to 77.5 mm, rest, back up. */

@@ -5,7 +5,7 @@
  * An action is a const table of keyframes (docs/actions.md has the format).
  * A keyframe is a *pose* - body translation and attitude plus a foot offset
  * per leg - not joint angles, so an action goes through the same body/leg
- * IK as walking (xgo/kinematics.h). The player interpolates between
+ * IK as walking (kinematics.h). The player interpolates between
  * keyframes every control tick with a monotone cubic Hermite curve in
  * integer arithmetic: the pose starts and ends at rest, passes through
  * every keyframe exactly, has a continuous velocity and never overshoots a

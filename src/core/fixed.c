@@ -1,5 +1,5 @@
 /*
- * fixed.c - integer-only math (see xgo/fixed.h and docs/fixed-point.md).
+ * fixed.c - integer-only math (see fixed.h and docs/fixed-point.md).
  *
  * No floating point anywhere: the tables below were generated offline (the
  * generator is in docs/fixed-point.md) and are checked against libm by

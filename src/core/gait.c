@@ -1,5 +1,5 @@
 /*
- * gait.c - phase-based gait generator (see xgo/gait.h and docs/gait.md).
+ * gait.c - phase-based gait generator (see gait.h and docs/gait.md).
  *
  * One master phase (uint32, 2^32 = one cycle) advances every tick by the
  * cadence `rate`. Leg i lifts off when the phase crosses lift[i]; it swings
@@ -284,7 +284,7 @@ static uint32_t fitted_rate(const xgo_gait_t *g, const gait_table_t *t, const in
 
 /* ------------------------------------------------------------ 1. limit */
 
-/* The command as the gait takes it (all of it is expected input, xgo/gait.h):
+/* The command as the gait takes it (all of it is expected input, gait.h):
  * speeds clamped to twice the vendor ranges, the mark-time height to its cap,
  * unknown gait types and paces to the defaults; mark time always trots. */
 static void limit_command(const xgo_gait_command_t *cmd, gait_tick_t *x)

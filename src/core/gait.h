@@ -46,7 +46,7 @@
  * twice the vendor ranges, mark-time height to XGO_GAIT_MAX_HEIGHT_UM.
  * Pointers must not be NULL (a caller bug: XGO_ASSERT, src/core/check.h).
  *
- * Portable: C99, integer arithmetic only (xgo/fixed.h), no OS calls, no heap,
+ * Portable: C99, integer arithmetic only (fixed.h), no OS calls, no heap,
  * no globals. Cost (x86-64 -O2): ~1,250 instructions per tick walking
  * steadily, ~2,200 while the velocity changes, ~75 standing; one xgo_sincos
  * per swinging leg, about 50 32x32->64 multiplies; 64-bit division only in

@@ -1,7 +1,7 @@
 /*
  * gait_governor.c - the gait's governor: how far the velocity may ramp, and
  * whether a gait switch fits, so that every planted foot still finishes its
- * stance inside its reach box (the contract in xgo/gait.h).
+ * stance inside its reach box (the contract in gait.h).
  *
  * A planted foot at offset off from its stance point, with r phase left
  * until its lift-off, travels s * r / (TICKS_PER_S * rate_max) more at the

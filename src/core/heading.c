@@ -1,5 +1,5 @@
 /*
- * Turn in place to a heading (see xgo/heading.h).
+ * Turn in place to a heading (see heading.h).
  */
 #include "heading.h"
 

@@ -1,5 +1,5 @@
 /*
- * Accelerometer and gyroscope model (see xgo/inertial.h).
+ * Accelerometer and gyroscope model (see inertial.h).
  */
 #include "inertial.h"
 

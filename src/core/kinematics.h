@@ -1,7 +1,7 @@
 /*
  * kinematics.h - leg inverse/forward kinematics, body pose to foot
  * positions, and the byte encodings of the foot and servo registers; all in
- * integer arithmetic (xgo/fixed.h).
+ * integer arithmetic (fixed.h).
  *
  * Frames (spec section 3; docs/geometry.md has the drawings and the sign
  * conventions):

@@ -1,6 +1,6 @@
 /*
  * Leg odometry: the body's motion on the floor from its planted feet
- * (see xgo/odometry.h for the model and the frame).
+ * (see odometry.h for the model and the frame).
  */
 #include "odometry.h"
 
