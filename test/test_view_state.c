@@ -134,6 +134,35 @@ static void test_state_numbers_are_the_boards(void)
     TEST_ASSERT_TRUE(xgo_test_json_is_true(s, "host_connected"));
 }
 
+/* The Mini2's arm: its servos and points as the board reports them; the
+ * Mini has none ("arm": null). */
+static void test_state_shows_the_arm(void)
+{
+    xgo_board_config_t cfg;
+    xgo_board_arm_t arm;
+    uint64_t cursor = 0;
+    const char *s = state(&cursor);
+    double v;
+    TEST_ASSERT_NOT_NULL(strstr(s, "\"arm\":null"));
+    xgo_board_default_config(&cfg);
+    cfg.model = XGO_MODEL_MINI2;
+    xgo_board_init(&g_board, &cfg);
+    write_reg(0x73, 0xA0); /* arm(x, z) */
+    write_reg(0x74, 0x60);
+    ticks(300);
+    s = state(&cursor);
+    TEST_ASSERT_EQUAL_INT(1, xgo_board_arm(&g_board, &arm));
+    TEST_ASSERT_EQUAL_INT(3, xgo_test_json_count(s, "arm.joints_deg"));
+    assert_value(arm.joints_mdeg[XGO_ARM_SHOULDER], 2, s, "arm.joints_deg.2");
+    assert_value(arm.joints_mdeg[XGO_ARM_ELBOW], 2, s, "arm.joints_deg.1");
+    assert_value(arm.shoulder_um.x, 1, s, "arm.shoulder_mm.0");
+    assert_value(arm.elbow_um.z, 1, s, "arm.elbow_mm.2");
+    assert_value(arm.claw_um.x, 1, s, "arm.claw_mm.0");
+    assert_value(arm.claw_um.z, 1, s, "arm.claw_mm.2");
+    TEST_ASSERT_FALSE(xgo_test_json_number(s, "arm.out_of_reach", &v)); /* a bool */
+    TEST_ASSERT_TRUE(arm.claw_um.x != arm.shoulder_um.x); /* it moved off the shoulder */
+}
+
 static void test_state_regs_are_a_host_read(void)
 {
     uint8_t expected[XGO_REG_COUNT];
@@ -421,6 +450,7 @@ int main(void)
 {
     UNITY_BEGIN();
     RUN_TEST(test_state_numbers_are_the_boards);
+    RUN_TEST(test_state_shows_the_arm);
     RUN_TEST(test_state_regs_are_a_host_read);
     RUN_TEST(test_board_read_equals_a_read_frame);
     RUN_TEST(test_frames_keep_the_newest_and_count_the_rest);

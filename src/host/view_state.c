@@ -162,6 +162,42 @@ static void xgo_host_view_counters_and_regs(xgo_host_json_t *w, const xgo_board_
     xgo_host_json_hex(w, regs, sizeof regs);
 }
 
+static void xgo_host_view_point(xgo_host_json_t *w, const char *key, const xgo_vec3_t *p)
+{
+    xgo_host_json_key(w, key);
+    xgo_host_json_array_begin(w);
+    xgo_host_json_fixed(w, p->x, 3, 1);
+    xgo_host_json_fixed(w, p->y, 3, 1);
+    xgo_host_json_fixed(w, p->z, 3, 1);
+    xgo_host_json_array_end(w);
+}
+
+/* The Mini2's arm (null on a model without one): servo angles and the
+ * shoulder, elbow and claw points in the body frame. */
+static void xgo_host_view_arm(xgo_host_json_t *w, const xgo_board_t *b)
+{
+    xgo_board_arm_t arm;
+    unsigned i;
+    xgo_host_json_key(w, "arm");
+    if (!xgo_board_arm(b, &arm)) {
+        xgo_host_json_null(w);
+        return;
+    }
+    xgo_host_json_object_begin(w);
+    xgo_host_json_key(w, "joints_deg");
+    xgo_host_json_array_begin(w);
+    for (i = 0; i < XGO_ARM_JOINT_COUNT; i++) {
+        xgo_host_json_fixed(w, arm.joints_mdeg[i], 3, 2);
+    }
+    xgo_host_json_array_end(w);
+    xgo_host_view_point(w, "shoulder_mm", &arm.shoulder_um);
+    xgo_host_view_point(w, "elbow_mm", &arm.elbow_um);
+    xgo_host_view_point(w, "claw_mm", &arm.claw_um);
+    xgo_host_json_key(w, "out_of_reach");
+    xgo_host_json_bool(w, arm.out_of_reach);
+    xgo_host_json_object_end(w);
+}
+
 void xgo_host_view_state_open(xgo_host_json_t *w, const xgo_board_t *b, uint64_t seq,
                               int host_connected, const char *model)
 {
@@ -188,6 +224,7 @@ void xgo_host_view_state_open(xgo_host_json_t *w, const xgo_board_t *b, uint64_t
     xgo_host_view_joints(w, b);
     xgo_host_view_feet(w, b);
     xgo_host_view_poses(w, b);
+    xgo_host_view_arm(w, b);
     xgo_host_view_speed_and_inputs(w, b);
     xgo_host_json_key(w, "host_connected");
     xgo_host_json_bool(w, host_connected);

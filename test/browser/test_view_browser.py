@@ -73,8 +73,8 @@ def frame(addr, data):
 
 
 class Emulator:
-    def __init__(self, exe, listen):
-        self.proc = subprocess.Popen([exe, "--view", listen], stdout=subprocess.PIPE,
+    def __init__(self, exe, listen, *extra):
+        self.proc = subprocess.Popen([exe, "--view", listen] + list(extra), stdout=subprocess.PIPE,
                                      stderr=subprocess.DEVNULL)
         self.out = b""
         self.fd = None
@@ -342,6 +342,44 @@ def check_reconnect(browser, emu_exe, emu):
         emu2.stop()
 
 
+ARM = (0xD0, 0x5C, 0xE3)  # view.js ARM_COLOR: the Mini2's forearm
+
+
+def arm_pixels(browser, rect):
+    """(count, mean x, mean y) of the forearm's colour in the canvas."""
+    _, _, rows = png_pixels(browser.screenshot(rect))
+    pts = [(x, y) for y, row in enumerate(rows) for x, p in enumerate(row)
+           if abs(p[0] - ARM[0]) <= 30 and abs(p[1] - ARM[1]) <= 30 and abs(p[2] - ARM[2]) <= 30]
+    if not pts:
+        return 0, 0.0, 0.0
+    return len(pts), sum(p[0] for p in pts) / len(pts), sum(p[1] for p in pts) / len(pts)
+
+
+def check_arm(chromium, exe, profile):
+    """--profile mini2: the page draws the arm from /state's "arm", and it
+    moves when the host moves it (arm(x, z): 0x73/0x74)."""
+    emu = Emulator(exe, "127.0.0.1:0", "--profile", "mini2")
+    browser = Browser(chromium, profile + "-mini2")
+    try:
+        browser.open(emu.url)
+        wait_for("a mini2 frame", lambda: int(browser.dataset().get("framesDrawn", "0")) > 0)
+        rect = browser.eval("(function(){var r=document.getElementById('scene').getBoundingClientRect();"
+                            "return {x:r.left,y:r.top,width:r.width,height:r.height};})()")
+        n0, x0, y0 = arm_pixels(browser, rect)
+        check(n0 > 40, "the Mini2's forearm is drawn (%d pixels of its colour)" % n0)
+        emu.host_write(0x73, [0x30])  # x -36 mm: over the back
+        emu.host_write(0x74, [0xB0])  # z 78 mm: up
+        wait_for("the arm to move", lambda: emu.state()["arm"]["claw_mm"][0] < 60)
+        time.sleep(0.5)
+        n1, x1, y1 = arm_pixels(browser, rect)
+        check(n1 > 40 and abs(x1 - x0) + abs(y1 - y0) > 10,
+              "the drawn arm moved with the board's (%.0f,%.0f) -> (%.0f,%.0f)" % (x0, y0, x1, y1))
+        check(not browser.errors, "no uncaught JavaScript error with the arm")
+    finally:
+        browser.close()
+        emu.stop()
+
+
 def try_start(exe, port):
     try:
         return Emulator(exe, "127.0.0.1:%d" % port)
@@ -371,6 +409,7 @@ def main():
         check_remote_control(browser, emu)
         check_inputs(browser, emu)
         check_reconnect(browser, sys.argv[1], emu)
+        check_arm(chromium, sys.argv[1], profile)
         check(not browser.errors, "no uncaught JavaScript error (%s)" % "; ".join(map(str, browser.errors)))
         print("view page in Chromium: all checks passed")
         return 0
@@ -383,6 +422,7 @@ def main():
         if emu:
             emu.stop()
         shutil.rmtree(profile, ignore_errors=True)
+        shutil.rmtree(profile + "-mini2", ignore_errors=True)
 
 
 if __name__ == "__main__":

@@ -171,7 +171,8 @@
   }
 
   function pose(a) {
-    return { j: a.joints_deg, body: a.body, world: a.world, contacts: a.contacts, t: a.t_ms };
+    return { j: a.joints_deg, body: a.body, world: a.world, contacts: a.contacts, arm: a.arm || null,
+             t: a.t_ms };
   }
 
   function mixPose(a, b, t) {
@@ -187,8 +188,18 @@
       world: { x_mm: lerp(a.world.x_mm, b.world.x_mm, t), y_mm: lerp(a.world.y_mm, b.world.y_mm, t),
                yaw_deg: lerpDeg(a.world.yaw_deg, b.world.yaw_deg, t) },
       contacts: t < 0.5 ? a.contacts : b.contacts,
+      arm: mixArm(a.arm, b.arm, t),
       t: lerp(a.t_ms, b.t_ms, t)
     };
+  }
+
+  /* The Mini2's arm between two states ("arm" is null without one). */
+  function mixArm(a, b, t) {
+    if (!a || !b) { return t < 0.5 ? (a || null) : (b || null); }
+    function mix3(p, q) { return [lerp(p[0], q[0], t), lerp(p[1], q[1], t), lerp(p[2], q[2], t)]; }
+    return { joints_deg: [0, 1, 2].map(function (k) { return lerp(a.joints_deg[k], b.joints_deg[k], t); }),
+             shoulder_mm: mix3(a.shoulder_mm, b.shoulder_mm), elbow_mm: mix3(a.elbow_mm, b.elbow_mm),
+             claw_mm: mix3(a.claw_mm, b.claw_mm), out_of_reach: b.out_of_reach };
   }
 
   function currentPose() {
@@ -433,19 +444,46 @@
     } };
   }
 
+  var ARM_COLOR = '#d05ce3'; /* the forearm: no other part is this colour (the browser test) */
+
+  /* The Mini2's arm (body frame points from /state's "arm"): upper arm,
+   * forearm, and two fingers opening with the claw servo (-65 deg open ..
+   * +65 deg closed), 18 mm long, in the arm's plane. */
+  function armItems(arm, toWorld, items) {
+    var sh = arm.shoulder_mm, el = arm.elbow_mm, cl = arm.claw_mm;
+    var len = Math.hypot(cl[0] - el[0], cl[2] - el[2]) || 1;
+    var u = [(cl[0] - el[0]) / len, 0, (cl[2] - el[2]) / len], n = [-u[2], 0, u[0]];
+    var open = (65 - arm.joints_deg[0]) / 130 * 35 * RAD, tips, s;
+    tips = [1, -1].map(function (side) {
+      return [cl[0] + 18 * (Math.cos(open) * u[0] + side * Math.sin(open) * n[0]), 0,
+              cl[2] + 18 * (Math.cos(open) * u[2] + side * Math.sin(open) * n[2])];
+    });
+    [[sh, el, '#c9ced8', 8], [el, cl, arm.out_of_reach ? '#ff7a45' : ARM_COLOR, 7],
+     [cl, tips[0], '#7d8796', 4], [cl, tips[1], '#7d8796', 4]].forEach(function (seg) {
+      s = segment(toWorld(seg[0]), toWorld(seg[1]));
+      if (s) { items.push(capsule(s, seg[2], seg[3])); }
+    });
+    [sh, el].forEach(function (p) {
+      s = point(toWorld(p));
+      if (s) { items.push(ball(s, '#2b313b', 5.5)); }
+    });
+  }
+
   /* Painter's order: the legs sit outside the body's sides, so the two legs
    * on the side away from the camera go first, then the body (a convex box,
-   * back faces culled), then the two near legs; depth sorts within a group. */
-  function drawRobot(corners, legs, contacts) {
+   * back faces culled), the arm on its back, then the two near legs; depth
+   * sorts within a group. */
+  function drawRobot(corners, legs, contacts, arm, toWorld) {
     var leftCentre = mid(corners[0], corners[7]), rightCentre = mid(corners[1], corners[6]);
     var leftNear = dist(view.eye, leftCentre) < dist(view.eye, rightCentre);
-    var far = [], boxItems = [], near = [];
+    var far = [], boxItems = [], armGroup = [], near = [];
     legs.forEach(function (pts, leg) {
       var left = leg === 0 || leg === 3;
       legItems(pts, contacts[leg], left === leftNear ? near : far);
     });
     faceItems(corners, boxItems);
-    [far, boxItems, near].forEach(function (group) {
+    if (arm) { armItems(arm, toWorld, armGroup); }
+    [far, boxItems, armGroup, near].forEach(function (group) {
       group.sort(function (a, b) { return b.depth - a.depth; }).forEach(function (it) { it.draw(); });
     });
   }
@@ -475,7 +513,7 @@
     });
     corners = bodyBox(meta.geometry).map(toWorld);
     drawShadow(corners, legs);
-    drawRobot(corners, legs, p.contacts || [1, 1, 1, 1]);
+    drawRobot(corners, legs, p.contacts || [1, 1, 1, 1], p.arm, toWorld);
     framesDrawn++;
     body.dataset.framesDrawn = String(framesDrawn);
     body.dataset.lastStateMs = String(Math.round(p.t));
