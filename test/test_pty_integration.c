@@ -38,6 +38,7 @@
 /* ------------------------------------------------------------- the child */
 
 static xgo_test_emu_t g_emu; /* stdout and stderr captured (err: trace, counters) */
+static xgo_test_emu_t g_first; /* a first emulator while g_emu is a second one */
 static int g_port = -1;
 static char g_dir[64];
 static char g_link[128];
@@ -181,6 +182,7 @@ void tearDown(void)
         g_port = -1;
     }
     xgo_test_emu_kill(&g_emu);
+    xgo_test_emu_kill(&g_first);
     /* whatever a failed test left there */
     if (unlink(g_link) != 0) {
         rmdir(g_link);
@@ -571,16 +573,16 @@ static void test_link_onto_a_foreign_symlink_is_refused(void)
 /* A second emulator must not steal the first one's name: its pty exists. */
 static void test_second_instance_cannot_steal_the_link(void)
 {
-    static xgo_test_emu_t first;
     char first_pty[256];
     uint8_t vx;
     emu_start_linked(NULL, NULL);
-    first = g_emu;
+    g_first = g_emu; /* tearDown stops it too, should the test fail */
     snprintf(first_pty, sizeof first_pty, "%s", g_emu.pty);
     xgo_test_emu_init(&g_emu);
     assert_link_refused(first_pty, "a pty that exists");
     xgo_test_emu_reset(&g_emu);
-    g_emu = first;
+    g_emu = g_first;
+    xgo_test_emu_init(&g_first);
     g_port = port_open_like_pyserial(g_link, B115200); /* still the first one's */
     read_regs(g_port, 0x30, 1, &vx);
     TEST_ASSERT_EQUAL_HEX8(0x80, vx);
@@ -873,6 +875,7 @@ int main(void)
     }
     snprintf(g_link, sizeof g_link, "%s/ttyXGO", g_dir);
     signal(SIGPIPE, SIG_IGN);
+    xgo_test_emu_init(&g_first);
 
     UNITY_BEGIN();
     RUN_TEST(test_prints_pty_path_first_and_links_it);
