@@ -323,6 +323,34 @@ static void test_replay_writes_the_motion_log(void)
     TEST_ASSERT_EQUAL_UINT32(ticks, rows); /* a row per tick replayed */
 }
 
+/* The settings note carries the model: a Mini2 session (its arm moving)
+ * replays on a Mini2. */
+static void test_replay_takes_the_model_from_the_note(void)
+{
+    static const uint8_t arm[2] = {0x90, 0x60}; /* arm_x, arm_z */
+    char path[300];
+    const char *args[] = {"--profile", "mini2", "--capture", path, NULL};
+    uint8_t reply[64];
+    int fd;
+    snprintf(path, sizeof path, "%s/capture_mini2.pcap", XGO_FIXTURE_DIR);
+    TEST_ASSERT_EQUAL_INT(0, xgo_test_emu_spawn(&g_emu, XGO_EMU_PATH, args, NULL));
+    TEST_ASSERT_EQUAL_INT(XGO_TEST_EMU_PTY_OK, xgo_test_emu_read_pty(&g_emu, START_MS));
+    fd = xgo_test_port_open_like_pyserial(g_emu.pty, B115200);
+    TEST_ASSERT_TRUE(fd >= 0);
+    TEST_ASSERT_EQUAL_INT(0, xgo_test_write_regs(fd, 0x73, arm, 2, REPLY_MS));
+    xgo_test_sleep_ms(100);
+    TEST_ASSERT_EQUAL_UINT(8 + 12, xgo_test_read_reply(fd, 0x50, 12, reply, REPLY_MS));
+    TEST_ASSERT_EQUAL_UINT(8 + 3, xgo_test_read_reply(fd, 0x5C, 3, reply, REPLY_MS)); /* claw, arm */
+    TEST_ASSERT_EQUAL_UINT(8 + 1, xgo_test_read_reply(fd, 0x02, 1, reply, REPLY_MS));
+    TEST_ASSERT_EQUAL_HEX8(0x03, reply[5]); /* a Mini2 answered */
+    close(fd);
+    TEST_ASSERT_TRUE(xgo_test_emu_stop(&g_emu, SIGTERM, START_MS));
+    TEST_ASSERT_EQUAL_INT_MESSAGE(0, run(XGO_REPLAY_PATH, path, NULL), g_run.err);
+    TEST_ASSERT_NOT_NULL(strstr(g_run.out, "identical: 40 reply bytes"));
+    /* on a Mini the same requests get other answers: the model matters */
+    TEST_ASSERT_EQUAL_INT(1, run(XGO_REPLAY_PATH, "--profile", "mini", path, NULL));
+}
+
 static void test_replay_misuse_and_bad_files(void)
 {
     TEST_ASSERT_EQUAL_INT(2, run(XGO_REPLAY_PATH, NULL));
@@ -342,6 +370,7 @@ int main(void)
     RUN_TEST(test_replay_finds_every_reply_identical);
     RUN_TEST(test_replay_reports_the_first_difference);
     RUN_TEST(test_replay_writes_the_motion_log);
+    RUN_TEST(test_replay_takes_the_model_from_the_note);
     RUN_TEST(test_replay_misuse_and_bad_files);
     return UNITY_END();
 }

@@ -48,7 +48,7 @@ static void xgo_host_capture_settings(const xgo_board_t *b, char *out, size_t si
     len = (size_t)snprintf(out, size,
                            "xgo-emu %s profile=%s battery=%u timeout_ms=%lu ground_tilt_mdeg=%ld,%ld "
                            "bt_name_hex=",
-                           XGO_EMU_VERSION, b->config.model == XGO_MODEL_LITE ? "lite" : "mini",
+                           XGO_EMU_VERSION, xgo_profile_get((unsigned)b->config.model)->name,
                            (unsigned)b->config.battery_pct, (unsigned long)b->config.parser_timeout_ms,
                            (long)roll, (long)pitch);
     for (i = 0; i < XGO_BT_NAME_LEN && len + 3 < size; i++) {

@@ -52,11 +52,35 @@ void xgo_host_format_value(int unit, int32_t value, int sign, char *out, size_t 
     snprintf(out + len, out_size - len, unit == XGO_UNIT_PERCENT ? "%s" : " %s", d.name);
 }
 
+/* On a model with the arm (the Mini2) some addresses are other registers
+ * (0x5D, 0x5E, 0x71..0x77: the arm's) and 0x5C reads the claw: the Mini's
+ * words and scales do not apply there. */
+static int xgo_host_other_model_row(const xgo_profile_t *p, uint8_t addr)
+{
+    size_t i;
+    if (p->arm == NULL) {
+        return 0;
+    }
+    if (addr == XGO_REG_SERVO_SPEED) {
+        return 1;
+    }
+    for (i = 0; i < xgo_reg_table_size(); i++) {
+        const xgo_reg_desc_t *d = xgo_reg_table_entry(i);
+        if ((d->flags & XGO_REGF_ARM) != 0 && addr >= d->addr && addr < d->addr + d->width) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
 void xgo_host_reg_meaning(const xgo_profile_t *p, uint8_t addr, uint8_t b, char *out,
                           size_t out_size)
 {
     int32_t v, lo, hi;
     out[0] = '\0';
+    if (xgo_host_other_model_row(p, addr)) {
+        return;
+    }
     if (xgo_reg_byte_to_value(p, addr, b, &v)) {
         int unit = (int)xgo_reg_unit(addr);
         if (b == 0 && (unit == XGO_UNIT_MS || addr == XGO_REG_MARK_TIME)) {
@@ -71,4 +95,15 @@ void xgo_host_reg_meaning(const xgo_profile_t *p, uint8_t addr, uint8_t b, char 
     if (!xgo_host_decode_value(addr, b, out, out_size)) {
         out[0] = '\0';
     }
+}
+
+int xgo_host_model_by_name(const char *name)
+{
+    unsigned m;
+    for (m = 0; m < XGO_HOST_MODEL_COUNT; m++) {
+        if (strcmp(xgo_profile_get(m)->name, name) == 0) {
+            return (int)m;
+        }
+    }
+    return -1;
 }

@@ -31,8 +31,16 @@ void xgo_host_format_fixed(int64_t value, unsigned scale, unsigned decimals, int
 void xgo_host_format_value(int unit, int32_t value, int sign, char *out, size_t out_size);
 
 /* Byte b of register addr on model p: "+25.00 cm/s", "off", "walk", "lie
- * down"; "" when the raw value says it all. */
+ * down"; "" when the raw value says it all, and on the Mini2's arm
+ * registers (0x5C read, 0x5D, 0x5E, 0x71..0x77: their scales are the arm
+ * model's, not described here). */
 void xgo_host_reg_meaning(const xgo_profile_t *p, uint8_t addr, uint8_t b, char *out,
                           size_t out_size);
+
+/* The robot models by name ("mini", "lite", "mini2": the profiles' names),
+ * for --profile options and capture notes. XGO_HOST_MODEL_COUNT codes from
+ * 0; xgo_host_model_by_name returns a code, or -1 for a name no model has. */
+#define XGO_HOST_MODEL_COUNT (XGO_PROFILE_MINI2 + 1u)
+int xgo_host_model_by_name(const char *name);
 
 #endif /* XGO_HOST_MEANING_H */

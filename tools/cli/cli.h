@@ -23,6 +23,7 @@
 #include "pcap.h"
 #include "xgo/profile.h"
 #include "xgo/protocol.h"
+#include "xgo/regs.h"
 
 #define XGO_CLI_OK 0
 #define XGO_CLI_FAIL 1
@@ -82,6 +83,11 @@ size_t xgo_cli_collect(xgo_cli_t *cli, uint8_t *buf, size_t cap, long ms);
 const xgo_profile_t *xgo_cli_profile(xgo_cli_t *cli);
 
 /* ---- regarg.c */
+/* The register row at addr for the board's model once it is known (--profile
+ * or asked), else the Mini's (the Mini2 has other rows: the arm). */
+const xgo_reg_desc_t *xgo_cli_reg(const xgo_cli_t *cli, uint8_t addr);
+/* Its name, "-" when the model lacks addr. */
+const char *xgo_cli_reg_name(const xgo_cli_t *cli, uint8_t addr);
 /* REG: a register name of the core's table ("vx"), an address ("0x30",
  * "48"), or a name's unique part after '_' ("speed" -> servo_speed).
  * want_write narrows suffix matches to writable registers, unit (xgo_unit_t,

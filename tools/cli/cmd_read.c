@@ -12,9 +12,9 @@
 /* How many bytes a read of register addr takes by default: its width; the
  * computed views as the vendor library reads them (attitude as a 4-byte
  * float, the IMU block, the int16 angles). */
-static unsigned xgo_cli_default_count(uint8_t addr)
+static unsigned xgo_cli_default_count(const xgo_cli_t *cli, uint8_t addr)
 {
-    const xgo_reg_desc_t *d = xgo_reg_find(addr);
+    const xgo_reg_desc_t *d = xgo_cli_reg(cli, addr);
     if (addr >= XGO_REG_IMU_ROLL && addr <= XGO_REG_IMU_YAW) {
         return 4;
     }
@@ -37,6 +37,9 @@ static int xgo_cli_read_show(xgo_cli_t *cli, uint8_t addr, unsigned n, xgo_host_
     if (xgo_cli_read(cli, addr, (uint8_t)n, data) != 0) {
         return -1;
     }
+    /* the board's model names its registers (the Mini2's arm rows) and
+     * scales them: asked once, after the board has answered at all */
+    (void)xgo_cli_profile(cli);
     xgo_cli_show_regs(cli, addr, data, n, json);
     return 0;
 }
@@ -76,7 +79,7 @@ int xgo_cli_cmd_read(xgo_cli_t *cli, int argc, char **argv)
     if (!xgo_cli_parse_reg(argv[1], 0, 0, &addr, err, sizeof err)) {
         return xgo_cli_usage_error("%s", err);
     }
-    n = (long)xgo_cli_default_count(addr);
+    n = (long)xgo_cli_default_count(cli, addr);
     if (argc == 3 && (!xgo_cli_parse_number(argv[2], 1, XGO_FRAME_MAX_DATA, &n) || addr + n > 256)) {
         return xgo_cli_usage_error("N must be 1..%u bytes and end by 0xFF, not '%s'",
                                    XGO_FRAME_MAX_DATA, argv[2]);
@@ -104,7 +107,7 @@ int xgo_cli_cmd_dump(xgo_cli_t *cli, int argc, char **argv)
         if (!xgo_reg_for_model(xgo_reg_table_entry(i), p != NULL && p->arm != NULL)) {
             continue; /* the other model's row at that address (0x5D: stand / servo52) */
         }
-        if (xgo_cli_read_show(cli, addr, xgo_cli_default_count(addr), json) != 0) {
+        if (xgo_cli_read_show(cli, addr, xgo_cli_default_count(cli, addr), json) != 0) {
             return xgo_cli_finish_json(cli, json, 1);
         }
     }
@@ -175,7 +178,7 @@ static int xgo_cli_watch_row(xgo_cli_t *cli, const xgo_cli_watch_t *w, uint64_t 
     }
     for (i = 0; i < w->count; i++) {
         uint8_t data[XGO_FRAME_MAX_DATA];
-        unsigned n = xgo_cli_default_count(w->addr[i]);
+        unsigned n = xgo_cli_default_count(cli, w->addr[i]);
         if (xgo_cli_read(cli, w->addr[i], (uint8_t)n, data) != 0) {
             if (!cli->json) {
                 printf("\n");
@@ -226,10 +229,13 @@ int xgo_cli_cmd_watch(xgo_cli_t *cli, int argc, char **argv)
     }
     signal(SIGINT, xgo_cli_on_sigint);
     signal(SIGTERM, xgo_cli_on_sigint);
+    if (xgo_cli_profile(cli) == NULL) { /* the columns' names are the model's */
+        return xgo_cli_fail(cli);
+    }
     if (!cli->json) {
         printf("%10s", "time_s");
         for (i = 0; i < w.count; i++) {
-            printf("  %16s", xgo_reg_name(w.addr[i]));
+            printf("  %16s", xgo_cli_reg_name(cli, w.addr[i]));
         }
         printf("\n");
     }

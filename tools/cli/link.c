@@ -216,7 +216,7 @@ int xgo_cli_read(xgo_cli_t *cli, uint8_t addr, uint8_t n, uint8_t *out)
             return -1;
         }
     }
-    snprintf(what, sizeof what, "read 0x%02X %s n=%u", addr, xgo_reg_name(addr), (unsigned)n);
+    snprintf(what, sizeof what, "read 0x%02X %s n=%u", addr, xgo_cli_reg_name(cli, addr), (unsigned)n);
     if (!cli->reply_ready || cli->reply_addr != addr || cli->reply_len != n) {
         xgo_cli_reply_error(cli, what, req, sizeof req);
         return -1;

@@ -9,6 +9,7 @@
 
 #include "cli.h"
 #include "json_out.h"
+#include "meaning.h"
 #include "serial.h"
 #include "xgo/board.h"
 
@@ -155,10 +156,8 @@ static int xgo_cli_global_option(xgo_cli_t *cli, int argc, char **argv, int *i)
         cli->timeout_ms = n;
     } else if (strcmp(o, "--capture") == 0) {
         cli->capture = v;
-    } else if (strcmp(v, "mini") == 0 || strcmp(v, "lite") == 0 || strcmp(v, "mini2") == 0) {
-        cli->profile = xgo_profile_get(strcmp(v, "lite") == 0    ? XGO_MODEL_LITE
-                                       : strcmp(v, "mini2") == 0 ? XGO_MODEL_MINI2
-                                                                 : XGO_MODEL_MINI);
+    } else if (xgo_host_model_by_name(v) >= 0) {
+        cli->profile = xgo_profile_get((unsigned)xgo_host_model_by_name(v));
     } else {
         return xgo_cli_usage_error("--profile must be mini, lite or mini2, not '%s'", v);
     }

@@ -15,6 +15,29 @@
 #include "xgo/reg_units.h"
 #include "xgo/regs.h"
 
+const xgo_reg_desc_t *xgo_cli_reg(const xgo_cli_t *cli, uint8_t addr)
+{
+    size_t i;
+    int arm;
+    if (cli == NULL || cli->profile == NULL) {
+        return xgo_reg_find(addr);
+    }
+    arm = cli->profile->arm != NULL;
+    for (i = 0; i < xgo_reg_table_size(); i++) {
+        const xgo_reg_desc_t *d = xgo_reg_table_entry(i);
+        if (xgo_reg_for_model(d, arm) && addr >= d->addr && (unsigned)addr < (unsigned)d->addr + d->width) {
+            return d;
+        }
+    }
+    return NULL;
+}
+
+const char *xgo_cli_reg_name(const xgo_cli_t *cli, uint8_t addr)
+{
+    const xgo_reg_desc_t *d = xgo_cli_reg(cli, addr);
+    return d != NULL ? d->name : "-";
+}
+
 int xgo_cli_parse_number(const char *word, long lo, long hi, long *out)
 {
     char *end = NULL;
@@ -271,7 +294,7 @@ static int xgo_cli_physical(xgo_cli_t *cli, uint8_t addr, const char *value, uin
     char a[48], b[48];
     int reg_unit = (int)xgo_reg_unit(addr);
     if (reg_unit == XGO_UNIT_NONE || u->unit != reg_unit) {
-        snprintf(err, err_size, "%s takes %s, not '%s'", xgo_reg_name(addr),
+        snprintf(err, err_size, "%s takes %s, not '%s'", xgo_cli_reg_name(cli, addr),
                  reg_unit == XGO_UNIT_NONE ? "no unit" : xgo_cli_unit_words(reg_unit), value);
         return -1;
     }
@@ -289,7 +312,7 @@ static int xgo_cli_physical(xgo_cli_t *cli, uint8_t addr, const char *value, uin
         (void)xgo_reg_value_range(p, addr, &lo, &hi);
         xgo_cli_format_value(reg_unit, lo, lo < 0, a, sizeof a);
         xgo_cli_format_value(reg_unit, hi, lo < 0, b, sizeof b);
-        snprintf(err, err_size, "%s=%s is out of range: %s .. %s on the %s", xgo_reg_name(addr), value,
+        snprintf(err, err_size, "%s=%s is out of range: %s .. %s on the %s", xgo_cli_reg_name(cli, addr), value,
                  a, b, p->name);
         return -1;
     }
@@ -329,10 +352,10 @@ static int xgo_cli_word_value(uint8_t addr, const char *value, uint8_t *out)
 
 /* Raw: "0xff", "255", "0x8080" (two bytes), or a quoted/plain text for a
  * text register. Returns the count or -1. */
-static int xgo_cli_raw_value(uint8_t addr, const char *value, uint8_t *out, size_t cap, char *err,
-                             size_t err_size)
+static int xgo_cli_raw_value(const xgo_cli_t *cli, uint8_t addr, const char *value, uint8_t *out,
+                             size_t cap, char *err, size_t err_size)
 {
-    const xgo_reg_desc_t *d = xgo_reg_find(addr);
+    const xgo_reg_desc_t *d = xgo_cli_reg(cli, addr);
     size_t n = 0;
     long v;
     if (d != NULL && d->valid == XGO_VALID_ASCII) {
@@ -361,10 +384,10 @@ static int xgo_cli_raw_value(uint8_t addr, const char *value, uint8_t *out, size
     }
     if (xgo_reg_unit(addr) != XGO_UNIT_NONE) {
         snprintf(err, err_size, "'%s' is no byte 0..255 and has no unit (%s takes %s)", value,
-                 xgo_reg_name(addr), xgo_cli_unit_words((int)xgo_reg_unit(addr)));
+                 xgo_cli_reg_name(cli, addr), xgo_cli_unit_words((int)xgo_reg_unit(addr)));
     } else {
         snprintf(err, err_size, "'%s' is no byte 0..255 (0x00..0xFF) nor a value %s has", value,
-                 xgo_reg_name(addr));
+                 xgo_cli_reg_name(cli, addr));
     }
     return -1;
 }
@@ -392,8 +415,8 @@ static int xgo_cli_heading(const char *value, uint8_t *out, char *err, size_t er
 
 /* Refuses what the board would refuse: read-only bytes, values outside a
  * register's valid set, a write past 0xFF. */
-static int xgo_cli_check_write(uint8_t addr, const uint8_t *data, size_t n, char *err,
-                               size_t err_size)
+static int xgo_cli_check_write(const xgo_cli_t *cli, uint8_t addr, const uint8_t *data, size_t n,
+                               char *err, size_t err_size)
 {
     size_t i;
     if ((size_t)addr + n > XGO_REG_COUNT) {
@@ -401,7 +424,7 @@ static int xgo_cli_check_write(uint8_t addr, const uint8_t *data, size_t n, char
         return -1;
     }
     for (i = 0; i < n; i++) {
-        const xgo_reg_desc_t *d = xgo_reg_find((uint8_t)(addr + i));
+        const xgo_reg_desc_t *d = xgo_cli_reg(cli, (uint8_t)(addr + i));
         if (d == NULL) {
             continue; /* the board ignores bytes for addresses it lacks (counted) */
         }
@@ -421,9 +444,9 @@ int xgo_cli_parse_value(xgo_cli_t *cli, uint8_t addr, const char *value, uint8_t
                         size_t cap, char *err, size_t err_size)
 {
     int n;
-    const xgo_reg_desc_t *d = xgo_reg_find(addr);
+    const xgo_reg_desc_t *d = xgo_cli_reg(cli, addr);
     if (value[0] == '\0') {
-        snprintf(err, err_size, "%s= needs a value", xgo_reg_name(addr));
+        snprintf(err, err_size, "%s= needs a value", xgo_cli_reg_name(cli, addr));
         return -1;
     }
     if (addr == XGO_REG_TURN_TO && xgo_cli_find_unit(value) != NULL) {
@@ -431,9 +454,9 @@ int xgo_cli_parse_value(xgo_cli_t *cli, uint8_t addr, const char *value, uint8_t
     } else if (xgo_cli_find_unit(value) != NULL && (d == NULL || d->valid != XGO_VALID_ASCII)) {
         n = xgo_cli_physical(cli, addr, value, out, err, err_size);
     } else {
-        n = xgo_cli_raw_value(addr, value, out, cap, err, err_size);
+        n = xgo_cli_raw_value(cli, addr, value, out, cap, err, err_size);
     }
-    if (n < 0 || xgo_cli_check_write(addr, out, (size_t)n, err, err_size) != 0) {
+    if (n < 0 || xgo_cli_check_write(cli, addr, out, (size_t)n, err, err_size) != 0) {
         return -1;
     }
     return n;

@@ -18,8 +18,9 @@ void xgo_cli_format_value(int unit, int32_t value, int sign, char *out, size_t o
 
 void xgo_cli_meaning(xgo_cli_t *cli, uint8_t addr, uint8_t b, char *out, size_t out_size)
 {
-    /* the model matters only to a register with a unit */
-    const xgo_profile_t *p = xgo_reg_unit(addr) != XGO_UNIT_NONE ? xgo_cli_profile(cli) : NULL;
+    /* a register with a unit needs the model (asked if unknown); words are
+     * the model's where known (the Mini2's rows differ) */
+    const xgo_profile_t *p = xgo_reg_unit(addr) != XGO_UNIT_NONE ? xgo_cli_profile(cli) : cli->profile;
     if (xgo_reg_unit(addr) != XGO_UNIT_NONE && p == NULL) {
         out[0] = '\0';
         return;
@@ -40,9 +41,10 @@ typedef struct xgo_cli_line_s {
     const char *unit;
 } xgo_cli_line_t;
 
-static void xgo_cli_line_init(xgo_cli_line_t *l, uint8_t addr, const uint8_t *bytes, size_t n)
+static void xgo_cli_line_init(xgo_cli_line_t *l, const xgo_cli_t *cli, uint8_t addr,
+                              const uint8_t *bytes, size_t n)
 {
-    const xgo_reg_desc_t *d = xgo_reg_find(addr);
+    const xgo_reg_desc_t *d = xgo_cli_reg(cli, addr);
     memset(l, 0, sizeof *l);
     l->addr = addr;
     l->bytes = bytes;
@@ -166,7 +168,7 @@ static size_t xgo_cli_show_diag(const uint8_t *data, size_t n, xgo_host_json_t *
         xgo_cli_line_t l;
         const uint8_t *p = data + 4 * k;
         uint32_t v = (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
-        xgo_cli_line_init(&l, (uint8_t)(XGO_REG_DIAG + 4 * k), p, 4);
+        xgo_cli_line_init(&l, NULL, (uint8_t)(XGO_REG_DIAG + 4 * k), p, 4);
         snprintf(l.name, sizeof l.name, "%s", xgo_diag_name((xgo_diag_t)k));
         snprintf(l.text, sizeof l.text, "%lu", (unsigned long)v);
         l.has_number = 1;
@@ -182,7 +184,7 @@ static void xgo_cli_byte_line(xgo_cli_t *cli, uint8_t addr, const uint8_t *b, xg
 {
     const xgo_profile_t *p;
     int32_t v;
-    xgo_cli_line_init(l, addr, b, 1);
+    xgo_cli_line_init(l, cli, addr, b, 1);
     xgo_cli_meaning(cli, addr, *b, l->text, sizeof l->text);
     if (xgo_reg_unit(addr) != XGO_UNIT_NONE && (p = xgo_cli_profile(cli)) != NULL &&
         xgo_reg_byte_to_value(p, addr, *b, &v)) {
@@ -202,25 +204,25 @@ static void xgo_cli_byte_line(xgo_cli_t *cli, uint8_t addr, const uint8_t *b, xg
 static size_t xgo_cli_line_at(xgo_cli_t *cli, uint8_t addr, const uint8_t *data, size_t n,
                               int first, xgo_cli_line_t *l)
 {
-    const xgo_reg_desc_t *d = xgo_reg_find(addr);
+    const xgo_reg_desc_t *d = xgo_cli_reg(cli, addr);
     if (first && addr >= XGO_REG_IMU_ROLL && addr <= XGO_REG_IMU_YAW && n >= 4) {
-        xgo_cli_line_init(l, addr, data, 4);
+        xgo_cli_line_init(l, cli, addr, data, 4);
         xgo_cli_attitude(l);
         return 4;
     }
     if (first && addr == XGO_REG_IMU_BLOCK && n >= XGO_IMU_BLOCK_LEN) {
-        xgo_cli_line_init(l, addr, data, XGO_IMU_BLOCK_LEN);
+        xgo_cli_line_init(l, cli, addr, data, XGO_IMU_BLOCK_LEN);
         xgo_cli_imu_block(l);
         return XGO_IMU_BLOCK_LEN;
     }
     if (first && addr >= XGO_REG_IMU_ROLL16 && addr <= XGO_REG_IMU_YAW16 && n >= 2) {
-        xgo_cli_line_init(l, addr, data, 2);
+        xgo_cli_line_init(l, cli, addr, data, 2);
         xgo_cli_attitude16(l);
         return 2;
     }
     if (first && addr == XGO_REG_FIRMWARE) {
         /* any length read from 0x07 is the string */
-        xgo_cli_line_init(l, addr, data, n < XGO_FIRMWARE_LEN ? n : XGO_FIRMWARE_LEN);
+        xgo_cli_line_init(l, cli, addr, data, n < XGO_FIRMWARE_LEN ? n : XGO_FIRMWARE_LEN);
         xgo_cli_text(l);
         return l->n;
     }
@@ -229,12 +231,12 @@ static size_t xgo_cli_line_at(xgo_cli_t *cli, uint8_t addr, const uint8_t *data,
     }
     if (d != NULL && d->addr == addr && d->valid == XGO_VALID_ASCII) {
         /* text: as much of it as the read (or write) covers */
-        xgo_cli_line_init(l, addr, data, n < d->width ? n : d->width);
+        xgo_cli_line_init(l, cli, addr, data, n < d->width ? n : d->width);
         xgo_cli_text(l);
         return l->n;
     }
     if (d != NULL && d->addr == addr && d->width > 1 && n >= d->width) {
-        xgo_cli_line_init(l, addr, data, d->width);
+        xgo_cli_line_init(l, cli, addr, data, d->width);
         return d->width;
     }
     xgo_cli_byte_line(cli, addr, data, l);
@@ -264,7 +266,7 @@ void xgo_cli_show_write(xgo_cli_t *cli, uint8_t addr, const uint8_t *data, size_
         /* the write view: one int16 big-endian heading, not two registers */
         xgo_cli_line_t l;
         int16_t deg = xgo_cli_be16(data);
-        xgo_cli_line_init(&l, addr, data, 2);
+        xgo_cli_line_init(&l, cli, addr, data, 2);
         snprintf(l.text, sizeof l.text, "%+d deg", deg);
         l.has_number = 1;
         l.number = deg;

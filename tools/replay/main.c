@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "meaning.h"
 #include "replay.h"
 
 #define XGO_REPLAY_VERSION "0.1.0"
@@ -23,7 +24,7 @@ static void xgo_replay_usage(FILE *out)
           "  --record FILE.csv   the replayed board's motion log (xgo-emu --record's columns)\n"
           "  --record-hz N       rows a second, 1..500 (default: every tick)\n"
           "  --trace             the replayed board's frames on stderr (xgo-emu --trace format)\n"
-          "  --profile M         mini or lite instead of the capture's settings note\n"
+          "  --profile M         mini, lite or mini2 instead of the capture's settings note\n"
           "  --battery PCT       initial battery 0..100 instead of the capture's\n"
           "  -h, --help          this help;  --version  the version\n"
           "\n"
@@ -87,8 +88,8 @@ static int xgo_replay_option(xgo_replay_options_t *o, int argc, char **argv, int
         o->record_hz = (unsigned)n;
     } else if (strcmp(a, "--battery") == 0 && xgo_replay_number(v, 0, 100, &n)) {
         o->battery = (int)n;
-    } else if (strcmp(a, "--profile") == 0 && (strcmp(v, "mini") == 0 || strcmp(v, "lite") == 0)) {
-        o->profile = v[0] == 'l' ? XGO_MODEL_LITE : XGO_MODEL_MINI;
+    } else if (strcmp(a, "--profile") == 0 && xgo_host_model_by_name(v) >= 0) {
+        o->profile = xgo_host_model_by_name(v);
     } else {
         return xgo_replay_usage_error("bad option '%s %s'", a, v);
     }

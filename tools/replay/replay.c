@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "replay.h"
+#include "meaning.h"
 #include "xgo/emulator.h"
 
 #define XGO_REPLAY_TICK_US (1000000u / XGO_TICK_HZ)
@@ -50,8 +51,8 @@ static void xgo_replay_offsets(const char *text, int32_t out[XGO_SERVO_COUNT])
 static void xgo_replay_setting(const char *kv, xgo_board_config_t *cfg, int32_t tilt[2],
                                xgo_board_nv_t *nv, int *has_nv)
 {
-    if (strncmp(kv, "profile=", 8) == 0) {
-        cfg->model = strcmp(kv + 8, "lite") == 0 ? XGO_MODEL_LITE : XGO_MODEL_MINI;
+    if (strncmp(kv, "profile=", 8) == 0 && xgo_host_model_by_name(kv + 8) >= 0) {
+        cfg->model = (xgo_model_t)xgo_host_model_by_name(kv + 8);
     } else if (strncmp(kv, "battery=", 8) == 0) {
         cfg->battery_pct = (uint8_t)strtoul(kv + 8, NULL, 10);
     } else if (strncmp(kv, "timeout_ms=", 11) == 0) {

@@ -100,8 +100,9 @@ int main(void)
     printf("  linktype = %u,\n  diag_addr = %u,\n", XGO_PCAP_LINKTYPE, XGO_REG_DIAG);
     print_registers();
     printf("  meanings = {\n");
-    print_meanings("mini", xgo_profile_get(XGO_MODEL_MINI));
-    print_meanings("lite", xgo_profile_get(XGO_MODEL_LITE));
+    for (i = 0; i < XGO_HOST_MODEL_COUNT; i++) {
+        print_meanings(xgo_profile_get(i)->name, xgo_profile_get(i));
+    }
     printf("  },\n  diag = {");
     for (i = 0; i < XGO_DIAG_COUNT; i++) {
         lua_string(xgo_diag_name((xgo_diag_t)i));
