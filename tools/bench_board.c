@@ -11,19 +11,17 @@
  *
  * Usage: bench_board [ticks] (default 200000)
  */
-#define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
 #include <stdlib.h>
-#include <time.h>
 
 #include "board_io.h"
+#include "test_clock.h"
 #include "xgo/board.h"
 
+/* Wall-clock seconds (test/support/test_clock.h). */
 static double now_s(void)
 {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
+    return xgo_test_now_us_f() * 1e-6;
 }
 
 int main(int argc, char **argv)

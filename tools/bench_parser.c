@@ -8,12 +8,11 @@
  *
  * Usage: bench_parser [passes]   (default 20)
  */
-#define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
 #include <stdlib.h>
-#include <time.h>
 
 #include "board_io.h" /* xgo_test_xorshift32 */
+#include "test_clock.h"
 #include "xgo/board.h"
 
 #define STREAM_BYTES (1u << 20)
@@ -58,11 +57,10 @@ static size_t build_stream(size_t *frames)
     return len;
 }
 
+/* Wall-clock seconds (test/support/test_clock.h). */
 static double now_s(void)
 {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
+    return xgo_test_now_us_f() * 1e-6;
 }
 
 int main(int argc, char **argv)
