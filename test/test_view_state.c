@@ -252,6 +252,37 @@ static void test_parser_drop_has_no_address(void)
     TEST_ASSERT_NOT_NULL(strstr(g_text, "\"addr\":null,\"n\":9,"));
 }
 
+/* A flood of garbage is folded into a few noise entries, as --trace folds
+ * it into lines: the frame after it is still in the list. */
+static void test_noise_flood_is_folded_and_the_frame_after_it_kept(void)
+{
+    static uint8_t noise[20000];
+    uint64_t cursor = xgo_host_view_state_first_cursor(&g_frames);
+    char text[256];
+    unsigned i;
+    for (i = 0; i < sizeof noise; i++) {
+        noise[i] = (uint8_t)(i % 2 ? 'h' : 'e'); /* never 0x55: no header */
+    }
+    for (i = 0; i < sizeof noise; i += 1000) { /* as reads from the pty arrive */
+        xgo_board_receive(&g_board, noise + i, 1000, 0);
+    }
+    write_reg(XGO_REG_VX, 0xFF);
+    state(&cursor);
+    TEST_ASSERT_EQUAL_INT(2, xgo_test_json_count(g_text, "frames"));
+    TEST_ASSERT_EQUAL_DOUBLE(0, number(g_text, "frames_omitted"));
+    TEST_ASSERT_TRUE(xgo_test_json_string(g_text, "frames.0.text", text, sizeof text));
+    TEST_ASSERT_EQUAL_STRING("noise n=20000 [65 68 65 68 65 68 65 68 65 68 65 68 65 68 65 68 ...]",
+                             text);
+    TEST_ASSERT_EQUAL_DOUBLE(20000, number(g_text, "frames.0.n"));
+    TEST_ASSERT_TRUE(xgo_test_json_string(g_text, "frames.1.text", text, sizeof text));
+    TEST_ASSERT_EQUAL_STRING("write 0x30 vx n=1 [FF] vx=FF(+100%)", text);
+    /* once sent, an entry is not changed: new noise starts a new one */
+    xgo_board_receive(&g_board, noise, 5, 0);
+    state(&cursor);
+    TEST_ASSERT_EQUAL_INT(1, xgo_test_json_count(g_text, "frames"));
+    TEST_ASSERT_EQUAL_DOUBLE(5, number(g_text, "frames.0.n"));
+}
+
 /* ------------------------------------------------------------ /input */
 
 static int post_input(const char *body)
@@ -455,6 +486,7 @@ int main(void)
     RUN_TEST(test_board_read_equals_a_read_frame);
     RUN_TEST(test_frames_keep_the_newest_and_count_the_rest);
     RUN_TEST(test_parser_drop_has_no_address);
+    RUN_TEST(test_noise_flood_is_folded_and_the_frame_after_it_kept);
     RUN_TEST(test_input_applies_every_field);
     RUN_TEST(test_bad_input_changes_nothing);
     RUN_TEST(test_command_writes_through_the_board_as_view);

@@ -35,6 +35,32 @@ static void xgo_host_view_frames_copy(xgo_host_view_frame_t *e, const xgo_trace_
     e->json_len = 0;
 }
 
+static int xgo_host_view_is_noise(uint8_t kind, uint8_t reason)
+{
+    return kind == XGO_TRACE_DROP && reason == XGO_DROP_NOISE;
+}
+
+/* More noise onto an unsent noise entry: the count grows, the first bytes
+ * stay (they are what the line shows). */
+static int xgo_host_view_frames_fold(xgo_host_view_frames_t *f, const xgo_trace_event_t *ev)
+{
+    xgo_host_view_frame_t *last;
+    size_t room, take;
+    if (f->next_seq == 0 || !xgo_host_view_is_noise((uint8_t)ev->kind, (uint8_t)ev->reason)) {
+        return 0;
+    }
+    last = &f->ring[(f->next_seq - 1) % XGO_HOST_VIEW_FRAME_RING];
+    if (!xgo_host_view_is_noise(last->kind, last->reason) || last->json_len != 0) {
+        return 0;
+    }
+    room = sizeof last->raw - last->raw_len;
+    take = ev->raw_len < room ? ev->raw_len : room;
+    memcpy(last->raw + last->raw_len, ev->raw, take);
+    last->raw_len = (uint16_t)(last->raw_len + take);
+    last->noise_n += (uint32_t)ev->raw_len;
+    return 1;
+}
+
 void xgo_host_view_frames_event(void *ctx, const xgo_trace_event_t *ev)
 {
     xgo_host_view_frames_t *f = ctx;
@@ -42,8 +68,12 @@ void xgo_host_view_frames_event(void *ctx, const xgo_trace_event_t *ev)
     if (f->trace_out != NULL) {
         xgo_host_trace_event(f->trace_out, ev);
     }
+    if (xgo_host_view_frames_fold(f, ev)) {
+        return;
+    }
     e->t_ms = xgo_board_time_ms(f->board);
     xgo_host_view_frames_copy(e, ev);
+    e->noise_n = (uint32_t)ev->raw_len;
     f->next_seq++;
 }
 
@@ -75,7 +105,8 @@ void xgo_host_view_frame_text(const xgo_host_view_frame_t *e, char *text)
         ev.frame = &frame;
     }
     ev.raw = e->raw_len > 0 ? e->raw : NULL;
-    ev.raw_len = e->raw_len;
+    /* noise: the whole run's count; the formatter shows the first bytes */
+    ev.raw_len = xgo_host_view_is_noise(e->kind, e->reason) ? e->noise_n : e->raw_len;
     xgo_host_trace_init(&clock, NULL, 0);
     xgo_host_trace_format(&clock, &ev, line, sizeof line);
     /* "   1.234567 rx write ..." -> "write ..." (time and kind are fields) */

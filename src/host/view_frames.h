@@ -3,6 +3,11 @@
  * board (frames in and out, drops, writes from the page) kept in a ring,
  * decoded into a --trace line only when a view client is sent it.
  *
+ * Noise (bytes without a header, reported a run at a time) is folded into
+ * the newest entry while that is noise nobody has been sent yet, as
+ * --trace folds it into one line: a flood of garbage takes a few entries,
+ * not the whole ring, and the frames around it stay visible.
+ *
  * Installed as the board's trace function; it passes every event on to the
  * --trace output too (when that is on), so one board has two observers.
  * Recording an event costs a copy of its bytes, nothing more: the pty's
@@ -40,8 +45,9 @@ typedef struct xgo_host_view_frame_s {
     uint8_t frame_addr;
     uint8_t frame_len;
     uint8_t frame_data[XGO_FRAME_MAX_DATA];
-    uint16_t raw_len;
+    uint16_t raw_len;  /* bytes kept in raw */
     uint8_t raw[XGO_FRAME_MAX_LEN];
+    uint32_t noise_n;  /* a noise drop: all the bytes folded into it */
     uint16_t json_len; /* 0 until the JSON object below is rendered */
     char json[XGO_HOST_VIEW_FRAME_JSON];
 } xgo_host_view_frame_t;

@@ -264,7 +264,7 @@ static void xgo_host_view_frame_render(xgo_host_view_frame_t *e)
     }
     xgo_host_json_key(&w, "n");
     /* A read request's n is its count; otherwise the bytes it carried. */
-    xgo_host_json_uint(&w, !e->has_frame                     ? e->raw_len
+    xgo_host_json_uint(&w, !e->has_frame                     ? e->noise_n
                            : e->frame_type == XGO_TYPE_READ ? e->frame_data[0]
                                                             : e->frame_len);
     xgo_host_json_key(&w, "text");
