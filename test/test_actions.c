@@ -179,8 +179,8 @@ static void test_idle_player_ticks_the_zero_pose(void)
     TEST_ASSERT_EQUAL_INT(0, xgo_action_tick(&p, &pose));
     TEST_ASSERT_TRUE(is_zero_pose(&pose));
     TEST_ASSERT_EQUAL_UINT8(0, xgo_action_running(&p));
-    /* a few words of state */
-    TEST_ASSERT_TRUE(sizeof(xgo_action_player_t) <= 8u);
+    /* a few words of state (the lead-in and its time scale included) */
+    TEST_ASSERT_TRUE(sizeof(xgo_action_player_t) <= 16u);
 }
 
 /* ------------------------------------------------------------ contract */
@@ -266,6 +266,59 @@ static void test_stop(void)
     TEST_ASSERT_TRUE(is_zero_pose(&pose));
     xgo_action_stop(&p); /* stopping an idle player is harmless */
     TEST_ASSERT_EQUAL_UINT8(0, xgo_action_running(&p));
+}
+
+/* Lead-in (issue 9): held, the action runs (its id, its ticks) with the zero
+ * pose while the board brings the robot to the stance; from xgo_action_go
+ * the keyframes play time-scaled into the ticks left and it still ends at
+ * tick N. Held for half of sit's 2500 ticks, the rest plays at twice the
+ * speed: the pose at tick 1250 + k is the unheld pose at tick 2k, exactly. */
+static void test_lead_in_holds_then_plays_time_scaled(void)
+{
+    const uint32_t n = xgo_action_duration_ticks(XGO_ACTION_SIT);
+    xgo_action_player_t p, ref;
+    xgo_pose_t a, b;
+    uint32_t k;
+    xgo_action_init(&p);
+    xgo_action_start(&p, XGO_ACTION_SIT);
+    xgo_action_hold(&p);
+    TEST_ASSERT_TRUE(xgo_action_held(&p));
+    for (k = 1; k <= n / 2; ++k) {
+        TEST_ASSERT_EQUAL_INT(1, xgo_action_tick(&p, &a));
+        TEST_ASSERT_TRUE(is_zero_pose(&a));
+        TEST_ASSERT_EQUAL_UINT8(XGO_ACTION_SIT, xgo_action_running(&p));
+    }
+    xgo_action_go(&p);
+    TEST_ASSERT_FALSE(xgo_action_held(&p));
+    xgo_action_init(&ref);
+    xgo_action_start(&ref, XGO_ACTION_SIT);
+    for (k = 1; k < n / 2; ++k) {
+        TEST_ASSERT_EQUAL_INT(1, xgo_action_tick(&p, &a));
+        xgo_action_tick(&ref, &b);
+        xgo_action_tick(&ref, &b);
+        TEST_ASSERT_EQUAL_MEMORY(&b, &a, sizeof a);
+    }
+    TEST_ASSERT_EQUAL_INT(0, xgo_action_tick(&p, &a)); /* tick N */
+    TEST_ASSERT_TRUE(is_zero_pose(&a));
+    TEST_ASSERT_EQUAL_UINT8(0, xgo_action_running(&p));
+}
+
+/* Let go at once, a held action plays exactly as one never held. */
+static void test_lead_in_of_no_ticks_changes_nothing(void)
+{
+    xgo_action_player_t p, ref;
+    xgo_pose_t a, b;
+    uint32_t k;
+    xgo_action_init(&p);
+    xgo_action_init(&ref);
+    xgo_action_start(&p, XGO_ACTION_WAVE);
+    xgo_action_hold(&p);
+    xgo_action_go(&p);
+    xgo_action_start(&ref, XGO_ACTION_WAVE);
+    for (k = 1; k <= xgo_action_duration_ticks(XGO_ACTION_WAVE); ++k) {
+        TEST_ASSERT_EQUAL_INT(xgo_action_tick(&ref, &b), xgo_action_tick(&p, &a));
+        TEST_ASSERT_EQUAL_MEMORY(&b, &a, sizeof a);
+    }
 }
 
 static void test_names(void)
@@ -871,6 +924,8 @@ int main(void)
     RUN_TEST(test_unknown_ids_start_nothing);
     RUN_TEST(test_start_while_running_restarts);
     RUN_TEST(test_stop);
+    RUN_TEST(test_lead_in_holds_then_plays_time_scaled);
+    RUN_TEST(test_lead_in_of_no_ticks_changes_nothing);
     RUN_TEST(test_names);
     RUN_TEST(test_perform_cycle);
     RUN_TEST(test_poses_change_smoothly);

@@ -104,10 +104,33 @@ typedef struct xgo_gait_s {
 /* The preset-action player (src/core/actions.h): which action, and where
  * in it. */
 typedef struct xgo_action_player_s {
-    uint8_t id;    /* running action, 0 = none */
-    uint16_t seg;  /* segment (keyframe interval) being played */
-    uint16_t tick; /* ticks into that segment */
+    uint8_t id;         /* running action, 0 = none */
+    uint16_t seg;       /* segment (keyframe interval) being played */
+    uint16_t seg_start; /* keyframe time (ticks) at which it starts */
+    uint16_t elapsed;   /* ticks since the start */
+    uint16_t lead;      /* ticks of lead-in before the keyframes; 0xFFFF: still in it */
+    uint32_t scale_q16; /* keyframe ticks per tick after the lead-in, Q16 */
 } xgo_action_player_t;
+
+/* Feet on their way home to the stance (src/core/settle.h). */
+typedef struct xgo_settle_s {
+    xgo_vec3_t foot[XGO_LEG_COUNT]; /* where each foot is (machine frame, z up) */
+    xgo_vec3_t from[XGO_LEG_COUNT]; /* where the current move started */
+    int32_t lift_um;                /* the current move's clearance */
+    int32_t v[3];                   /* the body still moving: vx, vy (um/s), yaw rate (mdeg/s) */
+    uint16_t tick;                  /* ticks into the current move */
+    uint16_t ticks;                 /* its length */
+    uint8_t planted;                /* bit leg: on the ground */
+    uint8_t moving;                 /* bit leg: in the current move */
+    uint8_t active;
+} xgo_settle_t;
+
+/* The body pose following its target (src/core/follow.h): x, y, z (um),
+ * roll, pitch, yaw (mdeg), all in 1/256. */
+typedef struct xgo_follow_s {
+    int32_t pos_q8[6];
+    int32_t vel_q8[6]; /* per tick */
+} xgo_follow_t;
 
 /* The twelve emulated servos (src/core/servos.h), register order. */
 typedef struct xgo_servos_s {
@@ -204,6 +227,14 @@ typedef struct xgo_motion_s {
     xgo_heading_t heading;    /* turn to heading (0x3F) and its origin (0x06) */
     xgo_inertial_t inertial;  /* accelerometer and gyroscope (0x65) */
     xgo_arm_t arm;            /* the Mini2's arm and claw */
+    xgo_settle_t settle;      /* transitions: feet on their way home to the stance */
+    xgo_follow_t follow;      /* the body pose following its target */
+    xgo_body_pose_t pose_target; /* the pose asked for (registers, action), before following */
+    xgo_vec3_t leg_feet_um[XGO_LEG_COUNT]; /* leg mode: the feet asked for now (leg frames,
+                                              moving toward the registers' at a bounded speed) */
+    uint16_t servo_written;   /* servo mode: joints written since entering it */
+    uint8_t leg_ready;        /* leg mode: home reached, leg_feet_um valid */
+    uint8_t servo_ready;      /* servo mode: home reached, unwritten joints captured */
     struct {                  /* last body + leg IK solve (skipped when unchanged) */
         xgo_body_pose_t pose;
         xgo_vec3_t feet[XGO_LEG_COUNT];     /* machine frame, as asked */

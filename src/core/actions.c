@@ -558,9 +558,9 @@ static void zero_pose(xgo_pose_t *o)
     *o = zero;
 }
 
-/* Pose at tick t of virtual segment k (which runs from keyframe k-1 to k;
- * keyframe -1 is the zero pose at time 0). */
-static void evaluate(const action_t *a, unsigned k, unsigned t, xgo_pose_t *out)
+/* Pose at t_q8 (1/256 tick) into virtual segment k (which runs from
+ * keyframe k-1 to k; keyframe -1 is the zero pose at time 0). */
+static void evaluate(const action_t *a, unsigned k, uint32_t t_q8, xgo_pose_t *out)
 {
     unsigned nv = virtual_count(a);
     const int8_t *fa = k >= 2u ? keyframe(a, k - 2u) : NULL; /* keyframe k-2 */
@@ -571,7 +571,7 @@ static void evaluate(const action_t *a, unsigned k, unsigned t, xgo_pose_t *out)
     unsigned hc = frame_cs(fc);                   /* segment k */
     unsigned hd = fd != NULL ? frame_cs(fd) : 0u; /* segment k+1 */
     uint32_t h = hc * TICKS_PER_CS;
-    int64_t s = (int64_t)(((uint32_t)t * 65536u + h / 2u) / h); /* Q16, [0, 1) */
+    int64_t s = (int64_t)((t_q8 * 256u + h / 2u) / h); /* Q16, [0, 1) */
     int64_t s2 = (s * s) >> 16;
     int64_t s3 = (s2 * s) >> 16;
     int64_t h01 = 3 * s2 - 2 * s3;      /* Hermite basis, Q16 */
@@ -602,11 +602,16 @@ static void evaluate(const action_t *a, unsigned k, unsigned t, xgo_pose_t *out)
 
 /* ------------------------------------------------------------ player */
 
+#define LEAD_HELD 0xFFFFu
+
 void xgo_action_init(xgo_action_player_t *p)
 {
     p->id = 0u;
     p->seg = 0u;
-    p->tick = 0u;
+    p->seg_start = 0u;
+    p->elapsed = 0u;
+    p->lead = 0u;
+    p->scale_q16 = 65536u;
 }
 
 int xgo_action_start(xgo_action_player_t *p, uint8_t id)
@@ -614,10 +619,32 @@ int xgo_action_start(xgo_action_player_t *p, uint8_t id)
     if (lookup(id) == NULL) {
         return 0;
     }
+    xgo_action_init(p);
     p->id = id;
-    p->seg = 0u;
-    p->tick = 0u;
     return 1;
+}
+
+void xgo_action_hold(xgo_action_player_t *p)
+{
+    if (p->id != 0u && p->elapsed == 0u) {
+        p->lead = LEAD_HELD;
+    }
+}
+
+int xgo_action_held(const xgo_action_player_t *p)
+{
+    return p->id != 0u && p->lead == LEAD_HELD;
+}
+
+/* The keyframes (N ticks of them) play in the N - lead ticks left. */
+void xgo_action_go(xgo_action_player_t *p)
+{
+    const uint32_t n = xgo_action_duration_ticks(p->id);
+    if (!xgo_action_held(p)) {
+        return;
+    }
+    p->lead = p->elapsed;
+    p->scale_q16 = p->elapsed + 1u < n ? (n << 16) / (n - p->elapsed) : n << 16;
 }
 
 void xgo_action_stop(xgo_action_player_t *p)
@@ -628,26 +655,26 @@ void xgo_action_stop(xgo_action_player_t *p)
 int xgo_action_tick(xgo_action_player_t *p, xgo_pose_t *out)
 {
     const action_t *a = lookup(p->id);
+    uint32_t now_q8;
     unsigned nv;
-    if (a == NULL) {
-        xgo_action_init(p);
+    if (a == NULL || ++p->elapsed >= (uint32_t)a->seconds * XGO_TICK_HZ) {
+        xgo_action_init(p); /* at the last keyframe: the zero pose, done */
         zero_pose(out);
         return 0;
     }
+    if (p->lead == LEAD_HELD) {
+        zero_pose(out); /* the board is still bringing the robot home */
+        return 1;
+    }
+    /* keyframe time now: (elapsed - lead) * scale, in 1/256 tick */
+    now_q8 = ((uint32_t)(p->elapsed - p->lead) * p->scale_q16) >> 8;
     nv = virtual_count(a);
-    if (p->seg < nv) {
-        ++p->tick;
-        if (p->tick >= frame_cs(keyframe(a, p->seg)) * TICKS_PER_CS) {
-            p->tick = 0u;
-            ++p->seg;
-        }
+    while (p->seg + 1u < nv &&
+           now_q8 >= ((uint32_t)p->seg_start + frame_cs(keyframe(a, p->seg)) * TICKS_PER_CS) << 8) {
+        p->seg_start = (uint16_t)(p->seg_start + frame_cs(keyframe(a, p->seg)) * TICKS_PER_CS);
+        ++p->seg;
     }
-    if (p->seg >= nv) { /* at the last keyframe: the zero pose, done */
-        xgo_action_init(p);
-        zero_pose(out);
-        return 0;
-    }
-    evaluate(a, p->seg, p->tick, out);
+    evaluate(a, p->seg, now_q8 - ((uint32_t)p->seg_start << 8), out);
     return 1;
 }
 

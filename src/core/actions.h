@@ -52,6 +52,18 @@ void xgo_action_init(xgo_action_player_t *p);
  * so bringing the robot there first is the caller's job. */
 int xgo_action_start(xgo_action_player_t *p, uint8_t id);
 
+/* Lead-in (issue 9): right after xgo_action_start, tell the player that the
+ * board first brings the robot to the stance. Until xgo_action_go, ticks
+ * return 1 with the zero pose (the action is running: 0x3E reads its id) and
+ * count toward its N ticks; from xgo_action_go on, the whole keyframe
+ * sequence plays in the ticks that are left, time-scaled, so the action
+ * still ends at tick N. Without a hold (or a go at once) the timing is
+ * exactly that of xgo_action_start alone. */
+void xgo_action_hold(xgo_action_player_t *p);
+void xgo_action_go(xgo_action_player_t *p);
+/* 1 while held in the lead-in. */
+int xgo_action_held(const xgo_action_player_t *p);
+
 /* Stop at once; the next tick returns 0 with the zero pose. */
 void xgo_action_stop(xgo_action_player_t *p);
 

@@ -1,0 +1,123 @@
+/*
+ * follow.c - the body pose follows its target smoothly (follow.h).
+ */
+#include "follow.h"
+
+#include "fixed.h"
+
+#define CHANNELS 6
+#define Q8 256
+
+/* Per-tick speed and acceleration bounds in 1/256 unit, per channel kind. */
+#define SPEED_T ((int32_t)((int64_t)XGO_FOLLOW_SPEED_UM_S * Q8 / XGO_TICK_HZ))
+#define ACCEL_T ((int32_t)((int64_t)XGO_FOLLOW_ACCEL_UM_S2 * Q8 / XGO_TICK_HZ / XGO_TICK_HZ))
+#define SPEED_R ((int32_t)((int64_t)XGO_FOLLOW_SPEED_MDEG_S * Q8 / XGO_TICK_HZ))
+#define ACCEL_R ((int32_t)((int64_t)XGO_FOLLOW_ACCEL_MDEG_S2 * Q8 / XGO_TICK_HZ / XGO_TICK_HZ))
+
+static void to_array(const xgo_body_pose_t *p, int32_t v[CHANNELS])
+{
+    v[0] = p->x_um;
+    v[1] = p->y_um;
+    v[2] = p->z_um;
+    v[3] = p->roll_mdeg;
+    v[4] = p->pitch_mdeg;
+    v[5] = p->yaw_mdeg;
+}
+
+static int32_t round_q8(int32_t v)
+{
+    return (int32_t)(((int64_t)v + Q8 / 2) >> 8);
+}
+
+void xgo_follow_pose(const xgo_follow_t *f, xgo_body_pose_t *out)
+{
+    out->x_um = round_q8(f->pos_q8[0]);
+    out->y_um = round_q8(f->pos_q8[1]);
+    out->z_um = round_q8(f->pos_q8[2]);
+    out->roll_mdeg = round_q8(f->pos_q8[3]);
+    out->pitch_mdeg = round_q8(f->pos_q8[4]);
+    out->yaw_mdeg = round_q8(f->pos_q8[5]);
+}
+
+void xgo_follow_init(xgo_follow_t *f, const xgo_body_pose_t *pose)
+{
+    int32_t v[CHANNELS];
+    unsigned c;
+    to_array(pose, v);
+    for (c = 0; c < CHANNELS; c++) {
+        f->pos_q8[c] = v[c] * Q8;
+        f->vel_q8[c] = 0;
+    }
+}
+
+void xgo_follow_take(xgo_follow_t *f, const xgo_body_pose_t *pose)
+{
+    int32_t v[CHANNELS];
+    unsigned c;
+    to_array(pose, v);
+    for (c = 0; c < CHANNELS; c++) {
+        f->vel_q8[c] = v[c] * Q8 - f->pos_q8[c];
+        f->pos_q8[c] = v[c] * Q8;
+    }
+}
+
+void xgo_follow_shift_z(xgo_follow_t *f, int32_t dz_um)
+{
+    f->pos_q8[2] += dz_um * Q8;
+}
+
+/* One channel: take the step to the target if it is within the bounds
+ * (then the output is the target), else accelerate toward it, never faster
+ * than lets it stop there: the speed v with v^2 / 2a + v / 2 = |e| (a
+ * discrete braking sequence v, v - a, ... covers that). */
+static void channel_tick(int32_t *pos, int32_t *vel, int32_t target_q8, int32_t speed, int32_t accel)
+{
+    const int32_t e = target_q8 - *pos;
+    const int32_t dv = e - *vel;
+    if (e >= -speed && e <= speed && dv >= -accel && dv <= accel) {
+        *vel = e;
+        *pos = target_q8;
+        return;
+    }
+    {
+        const uint32_t ae = e < 0 ? 0u - (uint32_t)e : (uint32_t)e;
+        int32_t brake = (int32_t)xgo_isqrt64((uint64_t)accel * (uint64_t)accel / 4u +
+                                             2u * (uint64_t)accel * ae) - accel / 2;
+        int32_t want, step;
+        brake = brake > (int32_t)ae ? (int32_t)ae : brake;
+        brake = brake > speed ? speed : brake;
+        want = e < 0 ? -brake : brake;
+        step = want - *vel;
+        step = step > accel ? accel : (step < -accel ? -accel : step);
+        *vel += step;
+        *pos += *vel;
+    }
+}
+
+void xgo_follow_tick(xgo_follow_t *f, const xgo_body_pose_t *target, xgo_body_pose_t *out)
+{
+    int32_t t[CHANNELS];
+    unsigned c;
+    to_array(target, t);
+    for (c = 0; c < CHANNELS; c++) {
+        if (f->pos_q8[c] == t[c] * Q8 && f->vel_q8[c] == 0) {
+            continue; /* resting on target: the common case */
+        }
+        channel_tick(&f->pos_q8[c], &f->vel_q8[c], t[c] * Q8, c < 3 ? SPEED_T : SPEED_R,
+                     c < 3 ? ACCEL_T : ACCEL_R);
+    }
+    xgo_follow_pose(f, out);
+}
+
+int xgo_follow_at(const xgo_follow_t *f, const xgo_body_pose_t *pose)
+{
+    int32_t t[CHANNELS];
+    unsigned c;
+    to_array(pose, t);
+    for (c = 0; c < CHANNELS; c++) {
+        if (f->pos_q8[c] != t[c] * Q8 || f->vel_q8[c] != 0) {
+            return 0;
+        }
+    }
+    return 1;
+}
