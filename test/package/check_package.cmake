@@ -9,7 +9,8 @@
 #                       add_subdirectory(SOURCE): the consumer's build type
 #                       stays unset and xgo's targets get no -Werror.
 #
-# Variables: MODE, SOURCE, BUILD, WORK, C_COMPILER.
+# Variables: MODE, SOURCE, BUILD, WORK, C_COMPILER, C_FLAGS (the build's
+# sanitizer flags, which a consumer of its library needs too).
 cmake_minimum_required(VERSION 3.16)
 
 function(run what)
@@ -25,7 +26,7 @@ endfunction()
 function(consumer dir)
   file(REMOVE_RECURSE ${dir})
   run("configure ${dir}" ${CMAKE_COMMAND} -S ${SOURCE}/examples/host-test -B ${dir}
-      -DCMAKE_C_COMPILER=${C_COMPILER} ${ARGN})
+      -DCMAKE_C_COMPILER=${C_COMPILER} "-DCMAKE_C_FLAGS=${C_FLAGS}" ${ARGN})
   run("build ${dir}" ${CMAKE_COMMAND} --build ${dir} -j2)
   run("test ${dir}" ${CMAKE_CTEST_COMMAND} --test-dir ${dir} --output-on-failure)
 endfunction()
@@ -65,7 +66,7 @@ if(MODE STREQUAL "find_package")
     set(ENV{PKG_CONFIG_PATH} ${prefix}/lib/pkgconfig)
     run("pkg-config xgo" ${PKG_CONFIG} --cflags --libs xgo)
     string(STRIP "${run_output}" flags)
-    separate_arguments(flags UNIX_COMMAND "${flags}")
+    separate_arguments(flags UNIX_COMMAND "${flags} ${C_FLAGS}")
     run("cc with pkg-config's flags" ${C_COMPILER} -std=c99 ${SOURCE}/examples/host-test/host_test.c
         ${flags} -o ${WORK}/host_test_pkg_config)
     run("host_test (pkg-config)" ${WORK}/host_test_pkg_config)
