@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "decode.h"
+#include "trace.h"
 #include "unity.h"
 #include "actions.h"
 #include "xgo/regs.h"
@@ -89,11 +90,37 @@ static void test_centred_and_choice_words(void)
     check_cases(cases, sizeof cases / sizeof cases[0]);
 }
 
+/* --trace names a register as the board's model has it: 0x5D is the
+ * standing posture on the Mini, the arm's servo 52 on the Mini2. */
+static void test_trace_names_registers_by_model(void)
+{
+    const uint8_t one = 1;
+    xgo_frame_t f;
+    xgo_trace_event_t ev;
+    xgo_host_trace_t t;
+    char line[256];
+    memset(&ev, 0, sizeof ev);
+    f.type = XGO_TYPE_WRITE;
+    f.addr = 0x5D;
+    f.len = 1;
+    f.data = &one;
+    ev.kind = XGO_TRACE_RX;
+    ev.frame = &f;
+    xgo_host_trace_init(&t, NULL, 0);
+    xgo_host_trace_format(&t, &ev, line, sizeof line);
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(line, "write 0x5D stand n=1 [01] stand=01(do it)"), line);
+    t.arm = 1;
+    xgo_host_trace_format(&t, &ev, line, sizeof line);
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(line, "write 0x5D servo52 n=1 [01] servo52=01"), line);
+    TEST_ASSERT_NULL_MESSAGE(strstr(line, "do it"), line);
+}
+
 int main(void)
 {
     UNITY_BEGIN();
     RUN_TEST(test_action_words_are_the_core_names_for_every_preset);
     RUN_TEST(test_unload_words_cover_the_register_set);
     RUN_TEST(test_centred_and_choice_words);
+    RUN_TEST(test_trace_names_registers_by_model);
     return UNITY_END();
 }

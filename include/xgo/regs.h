@@ -226,6 +226,8 @@ typedef struct xgo_reg_desc_s {
 size_t xgo_reg_table_size(void);
 const xgo_reg_desc_t *xgo_reg_table_entry(size_t i);
 const xgo_reg_desc_t *xgo_reg_find(uint8_t addr); /* the Mini's; NULL when it lacks addr */
+/* The same for a model with (arm = 1: the Mini2) or without the arm. */
+const xgo_reg_desc_t *xgo_reg_find_model(uint8_t addr, int arm);
 /* 1 if the table row d exists on a model with (arm = 1) or without the arm:
  * rows flagged XGO_REGF_ARM / XGO_REGF_NO_ARM are on one of them only. */
 int xgo_reg_for_model(const xgo_reg_desc_t *d, int arm);

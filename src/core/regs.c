@@ -54,16 +54,21 @@ static int for_model(const xgo_reg_desc_t *d, int arm)
     return xgo_reg_for_model(d, arm);
 }
 
-const xgo_reg_desc_t *xgo_reg_find(uint8_t addr)
+const xgo_reg_desc_t *xgo_reg_find_model(uint8_t addr, int arm)
 {
     size_t i;
     for (i = 0; i < REG_TABLE_SIZE; i++) {
         const xgo_reg_desc_t *d = &k_regs[i];
-        if (for_model(d, 0) && addr >= d->addr && (unsigned)addr < (unsigned)d->addr + d->width) {
+        if (for_model(d, arm) && addr >= d->addr && (unsigned)addr < (unsigned)d->addr + d->width) {
             return d;
         }
     }
     return NULL;
+}
+
+const xgo_reg_desc_t *xgo_reg_find(uint8_t addr)
+{
+    return xgo_reg_find_model(addr, 0);
 }
 
 const char *xgo_reg_name(uint8_t addr)

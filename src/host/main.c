@@ -183,6 +183,7 @@ int main(int argc, char **argv)
     }
 
     xgo_host_trace_init(&trace, stderr, xgo_host_clock_us());
+    trace.arm = opts.board.model == XGO_MODEL_MINI2;
     if (opts.trace) {
         xgo_board_set_trace(&board, xgo_host_trace_event, &trace);
     }

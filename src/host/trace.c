@@ -12,6 +12,7 @@ typedef struct xgo_host_line_s {
     char *buf;
     size_t size;
     size_t len;
+    int arm; /* name registers as on the Mini2 (xgo_reg_find_model) */
 } xgo_host_line_t;
 
 static void xgo_host_line_add(xgo_host_line_t *l, const char *fmt, ...)
@@ -46,7 +47,7 @@ static void xgo_host_line_hex(xgo_host_line_t *l, const uint8_t *bytes, size_t n
  * an address the Mini lacks. */
 static void xgo_host_line_reg(xgo_host_line_t *l, uint8_t addr)
 {
-    const xgo_reg_desc_t *d = xgo_reg_find(addr);
+    const xgo_reg_desc_t *d = xgo_reg_find_model(addr, l->arm);
     if (d == NULL) {
         xgo_host_line_add(l, "-");
     } else if (addr != d->addr) {
@@ -103,12 +104,12 @@ static void xgo_host_line_write_meaning(xgo_host_line_t *l, const xgo_frame_t *f
     }
     while (i < f->len) {
         uint8_t addr = (uint8_t)(f->addr + i);
-        const xgo_reg_desc_t *d = xgo_reg_find(addr);
+        const xgo_reg_desc_t *d = xgo_reg_find_model(addr, l->arm);
         char meaning[48];
 
         if (xgo_host_is_ascii_reg(d)) {
             xgo_host_line_add(l, " %s=\"", d->name);
-            while (i < f->len && xgo_reg_find((uint8_t)(f->addr + i)) == d) {
+            while (i < f->len && xgo_reg_find_model((uint8_t)(f->addr + i), l->arm) == d) {
                 uint8_t c = f->data[i];
                 xgo_host_line_add(l, (c >= 0x20u && c < 0x7Fu && c != '"' && c != '\\') ? "%c"
                                                                                       : "\\x%02X",
@@ -133,7 +134,8 @@ static void xgo_host_line_write_meaning(xgo_host_line_t *l, const xgo_frame_t *f
         }
         xgo_host_line_add(l, " ");
         xgo_host_line_reg(l, addr);
-        if (xgo_host_decode_value(addr, f->data[i], meaning, sizeof meaning)) {
+        /* the words are the Mini's registers' (0x5D on the Mini2 is a servo) */
+        if (d == xgo_reg_find(addr) && xgo_host_decode_value(addr, f->data[i], meaning, sizeof meaning)) {
             xgo_host_line_add(l, "=%02X(%s)", f->data[i], meaning);
         } else {
             xgo_host_line_add(l, "=%02X", f->data[i]);
@@ -219,6 +221,7 @@ void xgo_host_trace_format(const xgo_host_trace_t *t, const xgo_trace_event_t *e
     l.buf = line;
     l.size = line_size;
     l.len = 0;
+    l.arm = t->arm;
     line[0] = '\0';
     xgo_host_line_time(&l, t, t->now_us);
 
@@ -290,6 +293,7 @@ void xgo_host_trace_flush(xgo_host_trace_t *t)
     l.buf = line;
     l.size = sizeof line;
     l.len = 0;
+    l.arm = t->arm;
     line[0] = '\0';
     xgo_host_line_time(&l, t, t->noise_since_us);
     xgo_host_line_noise(&l, t->noise_head, shown, (unsigned long)t->noise_bytes);

@@ -38,6 +38,7 @@ typedef struct xgo_host_trace_s {
     uint64_t noise_since_us; /* when its first byte came */
     uint64_t noise_line_us;  /* when the last noise line was printed */
     int noise_printed;       /* a noise line was printed before */
+    int arm;                 /* the board is a Mini2: name its registers (0x5D servo52) */
 } xgo_host_trace_t;
 
 void xgo_host_trace_init(xgo_host_trace_t *t, FILE *out, uint64_t origin_us);
