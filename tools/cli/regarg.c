@@ -17,19 +17,7 @@
 
 const xgo_reg_desc_t *xgo_cli_reg(const xgo_cli_t *cli, uint8_t addr)
 {
-    size_t i;
-    int arm;
-    if (cli == NULL || cli->profile == NULL) {
-        return xgo_reg_find(addr);
-    }
-    arm = cli->profile->arm != NULL;
-    for (i = 0; i < xgo_reg_table_size(); i++) {
-        const xgo_reg_desc_t *d = xgo_reg_table_entry(i);
-        if (xgo_reg_for_model(d, arm) && addr >= d->addr && (unsigned)addr < (unsigned)d->addr + d->width) {
-            return d;
-        }
-    }
-    return NULL;
+    return xgo_reg_find_model(addr, cli != NULL && cli->profile != NULL && cli->profile->arm != NULL);
 }
 
 const char *xgo_cli_reg_name(const xgo_cli_t *cli, uint8_t addr)
