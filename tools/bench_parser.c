@@ -6,10 +6,17 @@
  * callgrind:  valgrind --tool=callgrind ./build/bench_parser 1
  * (instructions of xgo_board_receive / bytes fed).
  *
- * Usage: bench_parser [passes]   (default 20)
+ * With "parser" the same stream goes to a bare xgo_parser_t whose sink only
+ * counts frames: the parser's own cost (the budget in docs/mcu.md):
+ *   valgrind --tool=callgrind --toggle-collect=xgo_parser_feed \
+ *       --callgrind-out-file=/dev/null ./build/bench_parser 1 parser
+ * (Collected / the bytes printed).
+ *
+ * Usage: bench_parser [passes [parser]]   (default 20 passes, whole board)
  */
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "board_io.h" /* xgo_test_xorshift32 */
 #include "test_clock.h"
@@ -63,6 +70,38 @@ static double now_s(void)
     return xgo_test_now_us_f() * 1e-6;
 }
 
+static size_t parsed_frames;
+
+static void count_frame(void *ctx, const xgo_frame_t *frame)
+{
+    (void)ctx;
+    (void)frame;
+    parsed_frames++;
+}
+
+/* The parser alone, in the same 64-byte chunks. Returns 0 when every frame
+ * was found. */
+static int parser_only(size_t len, size_t frames, int passes)
+{
+    static xgo_parser_t parser;
+    xgo_parser_sink_t sink = {count_frame, NULL, NULL};
+    size_t pass, pos;
+    double t0, dt;
+    xgo_parser_init(&parser, &sink, 0);
+    t0 = now_s();
+    for (pass = 0; pass < (size_t)passes; pass++) {
+        for (pos = 0; pos < len; pos += 64) {
+            xgo_parser_feed(&parser, &stream[pos], len - pos < 64 ? len - pos : 64, 0);
+        }
+    }
+    dt = now_s() - t0;
+    printf("bench_parser: parser only, %zu bytes x %d passes, %zu frames/pass, %zu parsed\n", len,
+           passes, frames, parsed_frames);
+    printf("bench_parser: %.1f MB/s (wall clock, %.3f s); instructions/byte: run under callgrind\n",
+           (double)len * passes / dt / 1e6, dt);
+    return parsed_frames == frames * (size_t)passes ? 0 : 1;
+}
+
 int main(int argc, char **argv)
 {
     static xgo_board_t board;
@@ -73,10 +112,13 @@ int main(int argc, char **argv)
     double t0, dt;
 
     if (passes < 1) {
-        fprintf(stderr, "usage: bench_parser [passes>=1]\n");
+        fprintf(stderr, "usage: bench_parser [passes>=1 [parser]]\n");
         return 2;
     }
     len = build_stream(&frames);
+    if (argc > 2 && strcmp(argv[2], "parser") == 0) {
+        return parser_only(len, frames, passes);
+    }
     xgo_board_init(&board, NULL);
     t0 = now_s();
     for (pass = 0; pass < (size_t)passes; pass++) {

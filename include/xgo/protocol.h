@@ -49,8 +49,10 @@ extern "C" {
 #define XGO_TYPE_READ 0x02u
 #define XGO_TYPE_READ_REPLY 0x12u
 
-/* A validated frame. `data` points into the parser's buffer and is valid only
- * during the sink callback. For a read request data[0] is the byte count. */
+/* A validated frame. `data` points into the parser's buffer or into the bytes
+ * being fed (a whole frame is delivered from there, uncopied) and is valid
+ * only during the sink callback. For a read request data[0] is the byte
+ * count. */
 typedef struct xgo_frame_s {
     uint8_t type;
     uint8_t addr;

@@ -263,18 +263,66 @@ void xgo_parser_hangup(xgo_parser_t *p)
     }
 }
 
+/* The fast path: a whole, valid, in-range frame starting at in[0] (its
+ * last byte within avail) is delivered from there; returns its length, else
+ * 0 and nothing happened. It makes exactly the checks of scan() and
+ * complete(), so a frame it accepts is one the byte-by-byte path would
+ * deliver the same way; everything else (noise, a bad or cut-off candidate)
+ * goes that path, with its rejections, rescans and counters. Kept out of
+ * line: inlined, it makes the byte-at-a-time path (an MCU's RX interrupt
+ * feeding single bytes) pay for its registers on every call. */
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
+static size_t take_whole_frame(xgo_parser_t *p, const uint8_t *in, size_t avail)
+{
+    const size_t len = in[POS_LEN];
+    const size_t n = len - XGO_FRAME_OVERHEAD;
+    const uint8_t type = in[POS_TYPE];
+    xgo_frame_t frame;
+    uint32_t span;
+    if (in[POS_HEAD1] != XGO_FRAME_HEAD1 || len < XGO_FRAME_OVERHEAD + 1u || len > avail ||
+        !type_valid(p, type) || (type == XGO_TYPE_READ && len != XGO_READ_REQUEST_LEN) ||
+        in[len - 2] != XGO_FRAME_TAIL0 || in[len - 1] != XGO_FRAME_TAIL1 ||
+        in[len - 3] != xgo_frame_checksum((uint8_t)len, type, in[POS_ADDR], &in[POS_DATA], n)) {
+        return 0;
+    }
+    span = (type == XGO_TYPE_READ) ? in[POS_DATA] : (uint32_t)n;
+    if (span == 0 || span > XGO_FRAME_MAX_DATA || (uint32_t)in[POS_ADDR] + span > 256u) {
+        return 0;
+    }
+    frame.type = type;
+    frame.addr = in[POS_ADDR];
+    frame.len = (uint8_t)n;
+    frame.data = &in[POS_DATA];
+    p->stats.frames_ok++;
+    if (p->sink.on_frame != NULL) {
+        p->sink.on_frame(p->sink.ctx, &frame);
+    }
+    return len;
+}
+
 void xgo_parser_feed(xgo_parser_t *p, const uint8_t *bytes, size_t n, uint32_t now_ms)
 {
-    size_t i;
+    size_t i = 0;
     XGO_ASSERT(bytes != NULL || n == 0);
     if (n == 0) {
         return;
     }
     xgo_parser_poll(p, now_ms);
-    for (i = 0; i < n; i++) {
+    while (i < n) {
+        /* With nothing held, a whole frame in the input is delivered from
+         * there: no copy, no per-byte state machine. */
+        if (p->end == 0 && n - i >= XGO_READ_REQUEST_LEN && bytes[i] == XGO_FRAME_HEAD0) {
+            const size_t len = take_whole_frame(p, &bytes[i], n - i);
+            if (len > 0) {
+                i += len;
+                continue;
+            }
+        }
         /* Room is guaranteed: after scan() the held bytes are a strict prefix
          * of a candidate frame, so end < 255. */
-        p->buf[p->end++] = bytes[i];
+        p->buf[p->end++] = bytes[i++];
         scan(p);
     }
     p->last_rx_ms = now_ms;
