@@ -56,80 +56,176 @@ static int xgo_host_install_signals(void)
     return sigaction(SIGPIPE, &sa, NULL);
 }
 
+/* Everything one xgo-emu process runs, in one place (static in main:
+ * large, and it lives as long as the process). */
+typedef struct xgo_host_emu_s {
+    xgo_host_options_t opts;
+    xgo_board_t board;
+    xgo_host_loop_t loop;
+    xgo_host_view_t view;       /* --view: 2.4 MB of client buffers */
+    xgo_host_record_t record;   /* --record */
+    xgo_host_capture_t capture; /* --capture */
+    xgo_host_tcp_t tcp;         /* --tcp */
+    xgo_host_pty_t pty;
+    xgo_host_trace_t trace;
+    xgo_host_state_t state;     /* --state */
+    int pty_open;
+    char err[8192]; /* room for messages that quote two long paths */
+} xgo_host_emu_t;
+
 /* --view and --record: opened before the pty exists, so a port in use or
  * an uncreatable file stops us before anything is visible to a host. */
-static int xgo_host_open_outputs(const xgo_host_options_t *opts, xgo_host_view_t *view,
-                                 xgo_host_record_t *record, const xgo_board_t *board, char *err,
-                                 size_t err_size)
+static int xgo_host_open_outputs(xgo_host_emu_t *e)
 {
+    const xgo_host_options_t *opts = &e->opts;
     if (opts->view) {
-        if (xgo_host_view_open(view, opts->view_addr, opts->view_port, opts->view_hz, err,
-                               err_size) != 0) {
+        if (xgo_host_view_open(&e->view, opts->view_addr, opts->view_port, opts->view_hz, e->err,
+                               sizeof e->err) != 0) {
             return -1;
         }
         if ((opts->view_addr >> 24) != 127u) {
             fprintf(stderr, "xgo-emu: warning: --view on %s is reachable from other machines; "
                             "anyone who can connect can drive the robot\n",
-                    view->host);
+                    e->view.host);
         }
     }
     if (opts->record_path != NULL &&
-        xgo_host_record_open(record, opts->record_path, opts->record_hz, board, err, err_size) !=
-            0) {
+        xgo_host_record_open(&e->record, opts->record_path, opts->record_hz, &e->board, e->err,
+                             sizeof e->err) != 0) {
         return -1;
+    }
+    /* the capture's first note holds the board as loaded */
+    return opts->capture_path == NULL ? 0
+                                      : xgo_host_capture_open(&e->capture, opts->capture_path,
+                                                              &e->board, e->err, sizeof e->err);
+}
+
+/* The board (and its saved state), the outputs, the pty, the TCP bridge
+ * (it needs the pty's path) and the --link. Returns 0, or -1 with the
+ * reason in e->err. */
+static int xgo_host_emu_open(xgo_host_emu_t *e)
+{
+    const xgo_host_options_t *opts = &e->opts;
+    char replaced[4096]; /* the target of a stale --link symlink we replaced */
+    xgo_board_init(&e->board, &opts->board);
+    xgo_board_set_ground_tilt(&e->board, opts->ground_roll_mdeg, opts->ground_pitch_mdeg);
+    e->tcp.listen_fd = -1;
+    if ((opts->state_path != NULL &&
+         xgo_host_state_open(&e->state, opts->state_path, &e->board, e->err, sizeof e->err) != 0) ||
+        xgo_host_open_outputs(e) != 0 || xgo_host_pty_open(&e->pty, e->err, sizeof e->err) != 0) {
+        return -1;
+    }
+    e->pty_open = 1;
+    if (opts->tcp && xgo_host_tcp_open(&e->tcp, opts->tcp_addr, opts->tcp_port,
+                                       e->pty.slave_path, &e->loop, e->err, sizeof e->err) != 0) {
+        return -1;
+    }
+    if (opts->link_path != NULL) {
+        if (xgo_host_link_create(opts->link_path, e->pty.slave_path, replaced, sizeof replaced,
+                                 e->err, sizeof e->err) != 0) {
+            return -1;
+        }
+        if (replaced[0] != '\0') {
+            fprintf(stderr, "xgo-emu: replaced the stale symlink %s (it pointed at %s)\n",
+                    opts->link_path, replaced);
+        }
     }
     return 0;
 }
 
-/* --capture and --tcp: what passes the serial line, kept and bridged. The
- * capture opens before the pty (its first note holds the board as loaded);
- * the bridge needs the pty's path. */
-static xgo_host_capture_t xgo_host_capture;
-static xgo_host_tcp_t xgo_host_tcp;
-
-static int xgo_host_open_line_extras(const xgo_host_options_t *opts, const xgo_board_t *board,
-                                     const xgo_host_pty_t *pty, const xgo_host_loop_t *loop,
-                                     char *err, size_t err_size)
+/* Trace, loop and the services that ride on it. */
+static void xgo_host_emu_attach(xgo_host_emu_t *e)
 {
-    if (pty == NULL) {
-        return opts->capture_path == NULL
-                   ? 0
-                   : xgo_host_capture_open(&xgo_host_capture, opts->capture_path, board, err, err_size);
+    const xgo_host_options_t *opts = &e->opts;
+    xgo_host_trace_t *trace = opts->trace ? &e->trace : NULL;
+    xgo_host_trace_init(&e->trace, stderr, xgo_host_clock_us());
+    e->trace.arm = opts->board.model == XGO_MODEL_MINI2;
+    if (trace != NULL) {
+        xgo_board_set_trace(&e->board, xgo_host_trace_event, trace);
     }
-    xgo_host_tcp.listen_fd = -1;
-    return opts->tcp ? xgo_host_tcp_open(&xgo_host_tcp, opts->tcp_addr, opts->tcp_port,
-                                         pty->slave_path, loop, err, err_size)
-                     : 0;
-}
-
-static int xgo_host_close_line_extras(const xgo_host_options_t *opts)
-{
-    int rc = 0;
-    if (opts->capture_path != NULL && xgo_host_capture_close(&xgo_host_capture, stderr) != 0) {
-        rc = -1;
+    xgo_host_loop_init(&e->loop, &e->board, &e->pty, trace, opts->baud_pacing,
+                       &xgo_host_stop_requested);
+    xgo_host_loop_set_uart(&e->loop, opts->uart_baud);
+    if (opts->state_path != NULL) {
+        xgo_host_loop_set_state(&e->loop, &e->state);
+    }
+    if (opts->view) {
+        (void)xgo_host_view_attach(&e->view, &e->board, (unsigned)opts->board.model, &e->loop,
+                                   trace);
+    }
+    if (opts->record_path != NULL) {
+        (void)xgo_host_loop_add_service(&e->loop, &e->record.service);
+    }
+    if (opts->capture_path != NULL) {
+        (void)xgo_host_loop_add_service(&e->loop, &e->capture.service);
     }
     if (opts->tcp) {
-        xgo_host_tcp_print_counters(&xgo_host_tcp, stderr);
-        xgo_host_tcp_close(&xgo_host_tcp);
+        (void)xgo_host_loop_add_service(&e->loop, &e->tcp.service);
+    }
+}
+
+/* The first stdout line is the pty: scripts read it and open the port. */
+static void xgo_host_emu_announce(const xgo_host_emu_t *e)
+{
+    printf("%s\n", e->pty.slave_path);
+    if (e->opts.tcp) {
+        printf("tcp: %s:%u\n", e->tcp.host, e->tcp.port);
+    }
+    if (e->opts.view) {
+        printf("view: http://%s:%u/\n", e->view.host, e->view.port);
+    }
+    fflush(stdout);
+}
+
+/* Saves, flushes, counters, and every resource closed. Returns -1 when
+ * something the user asked to be kept was not (state, record, capture). */
+static int xgo_host_emu_close(xgo_host_emu_t *e, int served)
+{
+    const xgo_host_options_t *opts = &e->opts;
+    int rc = 0;
+    /* A change the board received but never saved is a runtime error. */
+    if (served && opts->state_path != NULL &&
+        xgo_host_state_close(&e->state, &e->board, stderr) != 0) {
+        rc = -1;
+    }
+    if (served && opts->trace) {
+        xgo_host_trace_flush(&e->trace); /* noise folded since the last line */
+    }
+    if (served && opts->record_path != NULL && xgo_host_record_close(&e->record, stderr) != 0) {
+        rc = -1;
+    }
+    if (served) {
+        xgo_host_loop_print_counters(&e->loop, stderr);
+    }
+    if (served && opts->capture_path != NULL &&
+        xgo_host_capture_close(&e->capture, stderr) != 0) {
+        rc = -1;
+    }
+    if (opts->tcp && e->tcp.listen_fd >= 0) {
+        if (served) {
+            xgo_host_tcp_print_counters(&e->tcp, stderr);
+        }
+        xgo_host_tcp_close(&e->tcp);
+    }
+    if (served && opts->view) {
+        xgo_host_view_print_counters(&e->view, stderr);
+        xgo_host_view_close(&e->view);
+    }
+    if (served && opts->link_path != NULL) {
+        xgo_host_link_remove_if_ours(opts->link_path, e->pty.slave_path);
+    }
+    if (e->pty_open) {
+        xgo_host_pty_close(&e->pty);
     }
     return rc;
 }
 
 int main(int argc, char **argv)
 {
-    static xgo_board_t board;   /* static: large, and lives as long as the process */
-    static xgo_host_loop_t loop;
-    static xgo_host_view_t view;     /* --view: 2.4 MB of client buffers */
-    static xgo_host_record_t record; /* --record */
-    xgo_host_options_t opts;
-    xgo_host_pty_t pty;
-    xgo_host_trace_t trace;
-    xgo_host_state_t state;
-    char err[8192]; /* room for messages that quote two long paths */
-    char replaced[4096]; /* the target of a stale --link symlink we replaced */
+    static xgo_host_emu_t emu;
     int rc;
 
-    switch (xgo_host_options_parse(&opts, argc, argv, err, sizeof err)) {
+    switch (xgo_host_options_parse(&emu.opts, argc, argv, emu.err, sizeof emu.err)) {
     case XGO_HOST_PARSE_RUN:
         break;
     case XGO_HOST_PARSE_HELP:
@@ -139,107 +235,24 @@ int main(int argc, char **argv)
         printf("xgo-emu %s\n", XGO_EMU_VERSION);
         return XGO_EXIT_OK;
     case XGO_HOST_PARSE_ERROR:
-        fprintf(stderr, "xgo-emu: %s\n", err);
+        fprintf(stderr, "xgo-emu: %s\n", emu.err);
         xgo_host_options_usage(stderr);
         return XGO_EXIT_USAGE;
     }
-
     if (xgo_host_install_signals() != 0) {
         perror("xgo-emu: sigaction");
         return XGO_EXIT_RUNTIME;
     }
-    xgo_board_init(&board, &opts.board);
-    xgo_board_set_ground_tilt(&board, opts.ground_roll_mdeg, opts.ground_pitch_mdeg);
-    if (opts.state_path != NULL &&
-        xgo_host_state_open(&state, opts.state_path, &board, err, sizeof err) != 0) {
-        fprintf(stderr, "xgo-emu: %s\n", err);
+    if (xgo_host_emu_open(&emu) != 0) {
+        fprintf(stderr, "xgo-emu: %s\n", emu.err);
+        (void)xgo_host_emu_close(&emu, 0);
         return XGO_EXIT_RUNTIME;
     }
-    if (xgo_host_open_outputs(&opts, &view, &record, &board, err, sizeof err) != 0 ||
-        xgo_host_open_line_extras(&opts, &board, NULL, NULL, err, sizeof err) != 0) {
-        fprintf(stderr, "xgo-emu: %s\n", err);
-        return XGO_EXIT_RUNTIME;
-    }
-    if (xgo_host_pty_open(&pty, err, sizeof err) != 0) {
-        fprintf(stderr, "xgo-emu: %s\n", err);
-        return XGO_EXIT_RUNTIME;
-    }
-    if (xgo_host_open_line_extras(&opts, &board, &pty, &loop, err, sizeof err) != 0) {
-        fprintf(stderr, "xgo-emu: %s\n", err);
-        xgo_host_pty_close(&pty);
-        return XGO_EXIT_RUNTIME;
-    }
-    if (opts.link_path != NULL) {
-        if (xgo_host_link_create(opts.link_path, pty.slave_path, replaced, sizeof replaced, err,
-                                 sizeof err) != 0) {
-            fprintf(stderr, "xgo-emu: %s\n", err);
-            xgo_host_pty_close(&pty);
-            return XGO_EXIT_RUNTIME;
-        }
-        if (replaced[0] != '\0') {
-            fprintf(stderr, "xgo-emu: replaced the stale symlink %s (it pointed at %s)\n",
-                    opts.link_path, replaced);
-        }
-    }
-
-    xgo_host_trace_init(&trace, stderr, xgo_host_clock_us());
-    trace.arm = opts.board.model == XGO_MODEL_MINI2;
-    if (opts.trace) {
-        xgo_board_set_trace(&board, xgo_host_trace_event, &trace);
-    }
-    xgo_host_loop_init(&loop, &board, &pty, opts.trace ? &trace : NULL, opts.baud_pacing,
-                       &xgo_host_stop_requested);
-    xgo_host_loop_set_uart(&loop, opts.uart_baud);
-    if (opts.state_path != NULL) {
-        xgo_host_loop_set_state(&loop, &state);
-    }
-    if (opts.view) {
-        (void)xgo_host_view_attach(&view, &board, (unsigned)opts.board.model, &loop,
-                                   opts.trace ? &trace : NULL);
-    }
-    if (opts.record_path != NULL) {
-        (void)xgo_host_loop_add_service(&loop, &record.service);
-    }
-    if (opts.capture_path != NULL) {
-        (void)xgo_host_loop_add_service(&loop, &xgo_host_capture.service);
-    }
-    if (opts.tcp) {
-        (void)xgo_host_loop_add_service(&loop, &xgo_host_tcp.service);
-    }
-
-    printf("%s\n", pty.slave_path);
-    if (opts.tcp) {
-        printf("tcp: %s:%u\n", xgo_host_tcp.host, xgo_host_tcp.port);
-    }
-    if (opts.view) {
-        printf("view: http://%s:%u/\n", view.host, view.port);
-    }
-    fflush(stdout);
-
-    rc = xgo_host_loop_run(&loop);
-
-    /* A change the board received but never saved is a runtime error: the
-     * user asked for it to be kept. */
-    if (opts.state_path != NULL && xgo_host_state_close(&state, &board, stderr) != 0) {
+    xgo_host_emu_attach(&emu);
+    xgo_host_emu_announce(&emu);
+    rc = xgo_host_loop_run(&emu.loop);
+    if (xgo_host_emu_close(&emu, 1) != 0) {
         rc = -1;
     }
-    if (opts.trace) {
-        xgo_host_trace_flush(&trace); /* noise folded since the last line */
-    }
-    if (opts.record_path != NULL && xgo_host_record_close(&record, stderr) != 0) {
-        rc = -1;
-    }
-    xgo_host_loop_print_counters(&loop, stderr);
-    if (xgo_host_close_line_extras(&opts) != 0) {
-        rc = -1;
-    }
-    if (opts.view) {
-        xgo_host_view_print_counters(&view, stderr);
-        xgo_host_view_close(&view);
-    }
-    if (opts.link_path != NULL) {
-        xgo_host_link_remove_if_ours(opts.link_path, pty.slave_path);
-    }
-    xgo_host_pty_close(&pty);
     return rc == 0 ? XGO_EXIT_OK : XGO_EXIT_RUNTIME;
 }
