@@ -17,6 +17,9 @@
 #define MINI_ABAD_OFFSET_UM 30988
 #define MINI_HIP_X_UM 75000
 #define MINI_HIP_Y_UM 22500
+#define MINI_LEG_GEOMETRY                                                                \
+    MINI_THIGH_UM, MINI_SHANK_UM, MINI_KNEE_OFFSET_MDEG, MINI_ABAD_OFFSET_UM, MINI_HIP_X_UM, \
+        MINI_HIP_Y_UM
 
 /* The Mini's outline, standing height and register ranges (the Mini2 shares
  * them: the vendor library picks its Mini parameter set for both). */
@@ -36,12 +39,7 @@
 
 static const xgo_profile_t mini_profile = {
     "mini",
-    MINI_THIGH_UM,
-    MINI_SHANK_UM,
-    MINI_KNEE_OFFSET_MDEG,
-    MINI_ABAD_OFFSET_UM,
-    MINI_HIP_X_UM,
-    MINI_HIP_Y_UM,
+    MINI_LEG_GEOMETRY,
     MINI_OUTLINE_AND_RANGES,
     NULL,
 };
@@ -51,12 +49,7 @@ static const xgo_profile_t mini_profile = {
  * library's Lite set. */
 static const xgo_profile_t lite_profile = {
     "lite",
-    MINI_THIGH_UM,
-    MINI_SHANK_UM,
-    MINI_KNEE_OFFSET_MDEG,
-    MINI_ABAD_OFFSET_UM,
-    MINI_HIP_X_UM,
-    MINI_HIP_Y_UM,
+    MINI_LEG_GEOMETRY,
     250000,
     150000,
     85000, /* middle of the body-height register range 60..110 mm */
@@ -96,12 +89,7 @@ static const xgo_arm_geometry_t mini2_arm = {
  * the arm. */
 static const xgo_profile_t mini2_profile = {
     "mini2",
-    MINI_THIGH_UM,
-    MINI_SHANK_UM,
-    MINI_KNEE_OFFSET_MDEG,
-    MINI_ABAD_OFFSET_UM,
-    MINI_HIP_X_UM,
-    MINI_HIP_Y_UM,
+    MINI_LEG_GEOMETRY,
     MINI_OUTLINE_AND_RANGES,
     &mini2_arm,
 };
