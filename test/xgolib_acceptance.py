@@ -428,7 +428,10 @@ def check_arm_points(call, dog, emu):
     expect(state["counters"]["arm_clamped"] == 0, "arm_clamped %d" % state["counters"]["arm_clamped"])
     call(dog, "arm", 155, 155)  # 219 mm away: the arm reaches 120
     REAL_SLEEP(0.3)
-    expect(emu.state()["counters"]["arm_clamped"] == 1, "an unreachable point was not counted")
+    # arm() sends x and z as two frames: landing in two ticks, (155, old z)
+    # is a point of its own and counts too
+    clamped = emu.state()["counters"]["arm_clamped"]
+    expect(clamped in (1, 2), "an unreachable point counted %d times" % clamped)
     return "%d points: board within %.2f mm, read_motor within %.2f mm; out of reach counted" % (
         len(cases), worst_board, worst_read)
 
