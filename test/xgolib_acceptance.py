@@ -9,9 +9,10 @@ acceptance test.
     python3 test/xgolib_acceptance.py build/xgo-emu       # needs xgolib + pyserial
 
 What it holds the emulator to:
-  - no call waits for a timeout: the library's own sleeps are counted (its
-    time.sleep is wrapped) and any other wait over 0.6 s - a read that got no
-    answer costs 1 s, upgrade() 10 s - fails the call;
+  - no call waits for a timeout: the library's reply parser (its private
+    __unpack, wrapped) must never give up - a read without an answer waits 1 s
+    there, upgrade() 10 s; and no call may spend more than 3 s outside the
+    library's own sleeps (its time.sleep, wrapped and counted);
   - every public method is called at least once per model (listed from the
     class itself, so a method the library adds is not silently skipped);
   - readings a standing or moving robot gives: read_imu() z about +9.8 m/s^2
@@ -22,10 +23,11 @@ What it holds the emulator to:
     2 mm: by the board's own account (the live view's /state) and as the
     servos read back through read_motor()'s bytes.
 
-The three models run as three processes at once (the library keeps its
-parameter set in a module global, so one process per model). Exit status 0
-all pass, 1 a failure, 77 (ctest's SKIP_RETURN_CODE) without xgolib or
-pyserial. Runtime about 40 s, mostly the library's own sleeps.
+The three models run one after the other, each in a process of its own (the
+library keeps its parameter set in a module global). Not at once: the
+library busy-waits for replies, so three at a time starve a small machine.
+Exit status 0 all pass, 1 a failure, 77 (ctest's SKIP_RETURN_CODE) without
+xgolib or pyserial. Runtime about 55 s, mostly the library's own sleeps.
 """
 
 import contextlib
@@ -55,7 +57,7 @@ except ImportError as exc:  # pragma: no cover - depends on the machine
     sys.exit(SKIP)
 
 MODELS = {"mini": ("xgomini", "M"), "lite": ("xgolite", "L"), "mini2": ("xgomini2sw", "W")}
-TIMEOUT_WAIT_S = 0.6   # a read without an answer waits 1 s: anything near that is a timeout
+STALL_S = 3.0  # time outside the library's sleeps that no call needs (a loaded machine included)
 REAL_SLEEP = time.sleep
 
 
@@ -70,6 +72,19 @@ def _counting_sleep(seconds):
 
 
 time.sleep = _counting_sleep  # xgolib_dog calls time.sleep through the module
+
+_real_unpack = XGO_DOG._XGO_DOG__unpack
+
+
+def _counting_unpack(self, timeout=1):
+    """The library's reply parser; False means it waited its whole timeout."""
+    ok = _real_unpack(self, timeout)
+    if not ok:
+        _slept.timeouts = getattr(_slept, "timeouts", 0) + 1
+    return ok
+
+
+XGO_DOG._XGO_DOG__unpack = _counting_unpack
 
 
 # ------------------------------------------------------------ results
@@ -140,8 +155,8 @@ class Emu:
 # ------------------------------------------------------------ calling the library
 
 class Caller:
-    """Calls XGO_DOG methods, timing each: the library's sleeps are its own
-    business, any other wait over TIMEOUT_WAIT_S is a timeout."""
+    """Calls XGO_DOG methods: none may see its reply parser time out, or
+    spend more than STALL_S outside the library's own sleeps."""
 
     def __init__(self, model):
         self.model = model
@@ -150,6 +165,7 @@ class Caller:
 
     def __call__(self, dog, name, *args, expect_error=None, **kw):
         _slept.total = 0.0
+        _slept.timeouts = 0
         t0 = time.monotonic()
         quiet = io.StringIO()
         try:
@@ -162,8 +178,11 @@ class Caller:
         self.called.add(name)
         if waited > self.worst[0]:
             self.worst = (waited, name)
-        if waited > TIMEOUT_WAIT_S:
-            raise Failed("%s%r waited %.2f s beyond its own sleeps (a timeout)" % (name, args, waited))
+        if _slept.timeouts:
+            raise Failed("%s%r: %d read(s) got no reply and waited for the timeout"
+                         % (name, args, _slept.timeouts))
+        if waited > STALL_S:
+            raise Failed("%s%r spent %.2f s beyond its own sleeps" % (name, args, waited))
         if error is not None and not (expect_error and isinstance(error, expect_error)):
             raise Failed("%s%r raised %s: %s" % (name, args, type(error).__name__, error))
         return result
@@ -247,7 +266,8 @@ def check_move_to(call, dog, model):
     call(dog, "move_to", 90)
     took = time.monotonic() - t0
     # the library: 0.1 s, polls every 0.1 s, then 0.5 s; the turn takes 1.76 s
-    expect(took < 3.2, "move_to(90) took %.2f s" % took)
+    # (its own timeout would be 15 s)
+    expect(took < 4.0, "move_to(90) took %.2f s" % took)
     yaw = call(dog, "read_yaw")
     turned = yaw_delta(yaw, origin)
     expect(near(turned, 90, 1.0), "turned %.2f deg, want 90 +-1" % turned)
@@ -382,7 +402,7 @@ def check_every_call(call, dog, model, workdir):
     call(dog, "reset")
     missing = [n for n in public_methods() if n not in call.called]
     expect(not missing, "methods never called: %s" % ", ".join(missing))
-    return "%d methods; longest wait outside the library's sleeps %.3f s (%s)" % (
+    return "%d methods, no reply timed out; longest time outside the library's sleeps %.3f s (%s)" % (
         len(call.called), call.worst[0], call.worst[1])
 
 
@@ -498,11 +518,11 @@ def main(argv):
         print("usage: xgolib_acceptance.py XGO_EMU", file=sys.stderr)
         return 2
     exe = argv[1]
-    procs = {m: subprocess.Popen([sys.executable, argv[0], "--model", m, exe], stdout=subprocess.PIPE,
-                                 stderr=subprocess.STDOUT) for m in MODELS}
     check_auto_baud(exe)
     failed = [name for name, ok, _ in RESULTS if not ok]
-    for model, proc in procs.items():
+    for model in MODELS:
+        proc = subprocess.Popen([sys.executable, argv[0], "--model", model, exe],
+                                stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
         out, _ = proc.communicate(timeout=300)
         for line in out.decode(errors="replace").splitlines():
             print("[%s] %s" % (model, line))
