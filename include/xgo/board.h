@@ -204,6 +204,10 @@ uint8_t xgo_board_battery_pct(const xgo_board_t *b);
 /* Where the robot is on the floor (leg odometry): origin at the power-up
  * position, x forward at power-up, y left, yaw CCW. */
 void xgo_board_world_pose(const xgo_board_t *b, xgo_world_pose_t *out);
+/* Whole-unit ticks whose body pose is not the one the registers ask for,
+ * because the legs could not hold that (docs/motion.md, "Poses the legs
+ * cannot hold"). Not in the diagnostic block: its 15 slots are taken. */
+uint32_t xgo_board_clamped_pose_ticks(const xgo_board_t *b);
 
 /* The gait generator (whole-unit mode): where it puts the feet, before the
  * body pose and the IK, and where it is in its cycle. */

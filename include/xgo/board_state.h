@@ -125,6 +125,24 @@ typedef struct xgo_settle_s {
     uint8_t active;
 } xgo_settle_t;
 
+/* The nearest pose the legs hold for the one asked (src/core/reach.h). */
+typedef struct xgo_reach_s {
+    xgo_body_pose_t key;    /* the pose asked for, periodic channels at their middle */
+    xgo_body_pose_t spread; /* key: the periodic channels' amplitude (0: none) */
+    xgo_body_pose_t stand;  /* the standing pose: always held */
+    xgo_body_pose_t held;   /* the last pose handed out (kept while a search runs) */
+    xgo_vec3_t stroke[XGO_LEG_COUNT]; /* key, walking: each planted foot's run either way */
+    xgo_vec3_t shift;       /* the search's body shift at this scale (um) */
+    xgo_vec3_t found;       /* the shift found (with scale), once the search ended */
+    uint32_t best;          /* the total miss at shift (um) */
+    int32_t step;           /* the descent's step (um); 0: not started at this scale */
+    uint8_t dir;            /* the descent's next probe: +x, -x, +y, -y, +z, -z; 6: the jump */
+    uint8_t walking;        /* key: the stroke is checked */
+    uint8_t searching;      /* 1 while the search goes on */
+    uint8_t scale;          /* share of the deviation from stand kept, in 1/8 */
+    uint8_t valid;          /* key holds a search */
+} xgo_reach_t;
+
 /* The body pose following its target (src/core/follow.h): x, y, z (um),
  * roll, pitch, yaw (mdeg), all in 1/256. */
 typedef struct xgo_follow_s {
@@ -229,7 +247,15 @@ typedef struct xgo_motion_s {
     xgo_arm_t arm;            /* the Mini2's arm and claw */
     xgo_settle_t settle;      /* transitions: feet on their way home to the stance */
     xgo_follow_t follow;      /* the body pose following its target */
-    xgo_body_pose_t pose_target; /* the pose asked for (registers, action), before following */
+    xgo_body_pose_t pose_target; /* the pose asked for (registers made reachable, action), before following */
+    xgo_reach_t reach;        /* the registers' pose made reachable */
+    xgo_vec3_t stroke[XGO_LEG_COUNT]; /* walking: how far each planted foot runs either way */
+    int32_t stroke_key[6];    /* the command the stroke is for: vx, vy, vyaw, mark time,
+                                 type | pace << 8, and the margin */
+    int32_t stroke_margin_um; /* added to the stroke after a planted foot ran out of reach */
+    uint8_t stroke_walks;     /* the command walks (stroke is its) */
+    uint8_t stroke_on;        /* stroke applies (walking, or still stopping) */
+    uint32_t clamped_pose_ticks; /* whole-unit ticks whose pose is not the one asked (reach.h) */
     xgo_vec3_t leg_feet_um[XGO_LEG_COUNT]; /* leg mode: the feet asked for now (leg frames,
                                               moving toward the registers' at a bounded speed) */
     uint16_t servo_written;   /* servo mode: joints written since entering it */

@@ -411,6 +411,11 @@ int xgo_board_arm(const xgo_board_t *b, xgo_board_arm_t *out)
     return 1;
 }
 
+uint32_t xgo_board_clamped_pose_ticks(const xgo_board_t *b)
+{
+    return b->motion.clamped_pose_ticks;
+}
+
 void xgo_board_world_pose(const xgo_board_t *b, xgo_world_pose_t *out)
 {
     xgo_odometry_pose(&b->motion.odom, out);

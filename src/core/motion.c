@@ -11,7 +11,13 @@
 #include "codec.h"
 #include "follow.h"
 #include "motion_internal.h"
+#include "reach.h"
 #include "settle.h"
+
+/* The stroke checked grows by this when a planted foot runs out of reach
+ * anyway (up to the max), see reachable_target. */
+#define STROKE_MARGIN_STEP_UM 3000
+#define STROKE_MARGIN_MAX_UM 15000
 
 static void reset_gait(xgo_motion_t *m)
 {
@@ -49,6 +55,7 @@ void xgo_motion_init(xgo_motion_t *m, const xgo_profile_t *profile, uint8_t batt
     m->pose = m->stand;
     m->pose_target = m->stand;
     xgo_follow_init(&m->follow, &m->stand);
+    xgo_reach_init(&m->reach, &m->stand);
     standing_joints(m, q);
     xgo_servos_init(&m->servos, profile, q);
     xgo_imu_init(&m->imu);
@@ -208,12 +215,71 @@ static void action_targets(xgo_motion_t *m, xgo_body_pose_t *pose, xgo_vec3_t fe
     xgo_follow_take(&m->follow, pose);
 }
 
+/* The command the gait follows: the registers', or a turn to a heading. */
+static void gait_command(xgo_motion_t *m, const xgo_regs_t *r, xgo_gait_command_t *cmd)
+{
+    xgo_motion_gait_command(m, r, cmd);
+    if (xgo_heading_active(&m->heading)) {
+        /* turning in place: the heading controller owns the yaw rate */
+        cmd->vx_um_s = cmd->vy_um_s = cmd->mark_time_um = 0;
+        cmd->vyaw_mdeg_s = xgo_heading_tick(&m->heading, m->imu.yaw_mdeg, m->gait.vyaw_mdeg_s);
+    }
+}
+
+/* The stroke the reach checks walk (reach.h): that of the command (a turn
+ * to a heading: at its highest rate), recomputed when the command or the
+ * learnt margin changes; it applies while walking and while still stopping
+ * (the last one kept). */
+static void update_stroke(xgo_motion_t *m, const xgo_gait_command_t *cmd)
+{
+    xgo_gait_command_t c = *cmd;
+    int32_t key[6];
+    if (xgo_heading_active(&m->heading)) {
+        c.vyaw_mdeg_s = XGO_HEADING_RATE_MDEG_S;
+    }
+    key[0] = c.vx_um_s;
+    key[1] = c.vy_um_s;
+    key[2] = c.vyaw_mdeg_s;
+    key[3] = c.mark_time_um;
+    key[4] = c.type | (c.pace << 8);
+    key[5] = m->stroke_key[5];
+    if (memcmp(key, m->stroke_key, 5 * sizeof key[0]) != 0) {
+        m->stroke_margin_um = 0; /* a new command: nothing learnt yet */
+    }
+    key[5] = m->stroke_margin_um;
+    if (memcmp(key, m->stroke_key, sizeof key) != 0) {
+        memcpy(m->stroke_key, key, sizeof key);
+        m->stroke_walks = (uint8_t)xgo_motion_stroke(m, &c, m->stroke);
+    }
+    if (m->stroke_walks) {
+        m->stroke_on = 1;
+    } else if (xgo_gait_is_standing(&m->gait) && !xgo_settle_active(&m->settle)) {
+        m->stroke_on = 0;
+    }
+}
+
+/* The pose the registers ask for, turned into one the legs hold with all
+ * four feet down (reach.h), for the feet standing or running their stroke.
+ * Counts the ticks where the two differ. */
+static void reachable_target(xgo_motion_t *m, const xgo_regs_t *r, const xgo_gait_command_t *cmd)
+{
+    xgo_body_pose_t asked, base, spread;
+    xgo_motion_asked_pose(m, r, &asked, &base, &spread);
+    update_stroke(m, cmd);
+    if (xgo_reach_tick(&m->reach, m->profile, &asked, &base, &spread, m->stance_um,
+                       m->stroke_on ? m->stroke : NULL, &m->pose_target)) {
+        m->clamped_pose_ticks++;
+    }
+}
+
+/* Whole unit: the gait's feet (or the settle's while the feet go home),
+ * the body following the reachable target. */
 static int whole_unit_targets(xgo_motion_t *m, const xgo_regs_t *r, int32_t q[XGO_SERVO_COUNT],
                               int32_t *yaw_rate_mdeg_s)
 {
     xgo_vec3_t feet[XGO_LEG_COUNT];
     xgo_body_pose_t pose;
-    int walking = 0;
+    int walking = 1;
     unsigned leg;
 
     *yaw_rate_mdeg_s = 0;
@@ -224,21 +290,15 @@ static int whole_unit_targets(xgo_motion_t *m, const xgo_regs_t *r, int32_t q[XG
     }
     if (m->action_id != 0) {
         action_targets(m, &pose, feet);
-        walking = 1;
     } else {
-        xgo_body_pose_t target;
-        xgo_motion_asked_pose(m, r, &target);
-        m->pose_target = target;
+        xgo_gait_command_t cmd;
+        gait_command(m, r, &cmd);
+        reachable_target(m, r, &cmd);
         if (xgo_settle_active(&m->settle)) {
             (void)xgo_settle_tick(&m->settle, m->stance_um, feet, &m->contact);
-            walking = 1;
         } else {
-            xgo_gait_command_t cmd;
-            xgo_motion_gait_command(m, r, &cmd);
-            if (xgo_heading_active(&m->heading)) {
-                /* turning in place: the heading controller owns the yaw rate */
-                cmd.vx_um_s = cmd.vy_um_s = cmd.mark_time_um = 0;
-                cmd.vyaw_mdeg_s = xgo_heading_tick(&m->heading, m->imu.yaw_mdeg, m->gait.vyaw_mdeg_s);
+            if (m->reach.searching && xgo_gait_is_standing(&m->gait)) {
+                memset(&cmd, 0, sizeof cmd); /* the first step waits for a pose the stroke holds */
             }
             xgo_gait_tick(&m->gait, &cmd);
             m->contact = 0;
@@ -254,6 +314,12 @@ static int whole_unit_targets(xgo_motion_t *m, const xgo_regs_t *r, int32_t q[XG
     }
     m->pose = pose;
     solve_joints(m, &pose, feet, q);
+    if ((m->ik_cache.projected & m->contact) != 0 && m->stroke_on && m->action_id == 0 &&
+        !m->reach.searching && m->stroke_margin_um < STROKE_MARGIN_MAX_UM) {
+        /* a planted foot ran out of reach where the stroke checked did not
+         * go: check a longer one (a new search from the next tick) */
+        m->stroke_margin_um += STROKE_MARGIN_STEP_UM;
+    }
     return walking;
 }
 

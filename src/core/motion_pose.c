@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "codec.h"
+#include "fixed.h"
 #include "motion_internal.h"
 
 #define PERIODIC_AXES 6 /* roll, pitch, yaw, x, y, z */
@@ -18,6 +19,11 @@
 static int32_t clamp32(int32_t v, int32_t lo, int32_t hi)
 {
     return v < lo ? lo : (v > hi ? hi : v);
+}
+
+static int32_t abs32(int32_t v)
+{
+    return v < 0 ? -v : v;
 }
 
 static void advance_periodic(xgo_motion_t *m, unsigned axis, uint8_t period_byte)
@@ -36,13 +42,26 @@ static int32_t wave(xgo_bam_t phase, int32_t amplitude)
 /* The body pose the registers ask for: 0x33..0x38 (dead band at 0x7F/0x80),
  * each axis with a periodic motion (0x39..0x3B, 0x80..0x82) replaced by its
  * sinusoid. Advances the periodic phases. */
-static void body_pose_from_registers(xgo_motion_t *m, const xgo_regs_t *r, xgo_body_pose_t *pose)
+static void set_pose(xgo_body_pose_t *pose, const int32_t v[PERIODIC_AXES])
+{
+    pose->roll_mdeg = v[0];
+    pose->pitch_mdeg = v[1];
+    pose->yaw_mdeg = v[2];
+    pose->x_um = v[3];
+    pose->y_um = v[4];
+    pose->z_um = v[5];
+}
+
+/* The pose of the registers now; base: the same with each periodic
+ * channel at its middle; spread: those channels' amplitudes, 0 elsewhere. */
+static void body_pose_from_registers(xgo_motion_t *m, const xgo_regs_t *r, xgo_body_pose_t *pose,
+                                     xgo_body_pose_t *base, xgo_body_pose_t *spread)
 {
     const xgo_profile_t *p = m->profile;
     static const uint8_t period_reg[PERIODIC_AXES] = {XGO_REG_PERIOD_ROLL, XGO_REG_PERIOD_PITCH,
                                                       XGO_REG_PERIOD_YAW, XGO_REG_PERIOD_X,
                                                       XGO_REG_PERIOD_Y, XGO_REG_PERIOD_Z};
-    int32_t v[PERIODIC_AXES];
+    int32_t v[PERIODIC_AXES], mid[PERIODIC_AXES], amp[PERIODIC_AXES] = {0, 0, 0, 0, 0, 0};
     unsigned axis;
 
     v[0] = xgo_signed_byte_to_value(xgo_regs_get(r, XGO_REG_BODY_ROLL), p->body_mdeg[0].hi);
@@ -51,6 +70,7 @@ static void body_pose_from_registers(xgo_motion_t *m, const xgo_regs_t *r, xgo_b
     v[3] = xgo_signed_byte_to_value(xgo_regs_get(r, XGO_REG_BODY_X), p->body_um[0].hi);
     v[4] = xgo_signed_byte_to_value(xgo_regs_get(r, XGO_REG_BODY_Y), p->body_um[1].hi);
     v[5] = xgo_byte_to_range(&p->body_um[2], xgo_regs_get(r, XGO_REG_BODY_Z));
+    memcpy(mid, v, sizeof mid);
 
     /* A periodic motion replaces the static value on its axis: a sinusoid
      * of half the axis' range around its middle (the spec's "half of the
@@ -63,22 +83,20 @@ static void body_pose_from_registers(xgo_motion_t *m, const xgo_regs_t *r, xgo_b
             continue;
         }
         advance_periodic(m, axis, b);
-        v[axis] = (range->lo + range->hi) / 2 + wave(m->periodic_phase[axis], (range->hi - range->lo) / 4);
+        mid[axis] = (range->lo + range->hi) / 2;
+        amp[axis] = (range->hi - range->lo) / 4;
+        v[axis] = mid[axis] + wave(m->periodic_phase[axis], amp[axis]);
     }
-
-    pose->roll_mdeg = v[0];
-    pose->pitch_mdeg = v[1];
-    pose->yaw_mdeg = v[2];
-    pose->x_um = v[3];
-    pose->y_um = v[4];
-    pose->z_um = v[5];
+    set_pose(pose, v);
+    set_pose(base, mid);
+    set_pose(spread, amp);
 }
 
 /* Self-stabilisation (0x61 = 1) levels the body against the IMU: each tick
  * the roll and pitch correction moves by a share of the IMU's error (of the
  * last tick); off, the correction decays. It is added to the body pose,
  * whose roll and pitch stay within the profile's ranges. */
-static void self_level(xgo_motion_t *m, const xgo_regs_t *r, xgo_body_pose_t *pose)
+static void self_level(xgo_motion_t *m, const xgo_regs_t *r)
 {
     const xgo_profile_t *p = m->profile;
     if (xgo_regs_get(r, XGO_REG_IMU_MODE) == 1) {
@@ -95,6 +113,12 @@ static void self_level(xgo_motion_t *m, const xgo_regs_t *r, xgo_body_pose_t *po
     }
     m->stab_mdeg[0] = clamp32(m->stab_mdeg[0], 2 * p->body_mdeg[0].lo, 2 * p->body_mdeg[0].hi);
     m->stab_mdeg[1] = clamp32(m->stab_mdeg[1], 2 * p->body_mdeg[1].lo, 2 * p->body_mdeg[1].hi);
+}
+
+/* The correction on a pose, whose roll and pitch stay within the ranges. */
+static void level(const xgo_motion_t *m, xgo_body_pose_t *pose)
+{
+    const xgo_profile_t *p = m->profile;
     pose->roll_mdeg = clamp32(pose->roll_mdeg + m->stab_mdeg[0], p->body_mdeg[0].lo, p->body_mdeg[0].hi);
     pose->pitch_mdeg =
         clamp32(pose->pitch_mdeg + m->stab_mdeg[1], p->body_mdeg[1].lo, p->body_mdeg[1].hi);
@@ -114,8 +138,62 @@ void xgo_motion_gait_command(const xgo_motion_t *m, const xgo_regs_t *r, xgo_gai
 /* Feet and pose for a running action (255, the reset, stands for 1 s): the
  * action's offsets on the standing pose and the stance; a foot not lifted
  * is on the ground. */
-void xgo_motion_asked_pose(xgo_motion_t *m, const xgo_regs_t *r, xgo_body_pose_t *pose)
+void xgo_motion_asked_pose(xgo_motion_t *m, const xgo_regs_t *r, xgo_body_pose_t *pose,
+                           xgo_body_pose_t *base, xgo_body_pose_t *spread)
 {
-    body_pose_from_registers(m, r, pose);
-    self_level(m, r, pose); /* sees last tick's target, m->pose_target */
+    body_pose_from_registers(m, r, pose, base, spread);
+    self_level(m, r); /* sees last tick's target, m->pose_target */
+    level(m, pose);
+    level(m, base);
+}
+
+/* mdeg/s x um -> um/s: pi / 180000, Q32 (74961.3) */
+#define K_YAW_Q32 74961
+
+/* How far each planted foot runs from its stance point either way while
+ * the gait follows cmd: half its travel during a stance, (v + w x p) *
+ * T_stance / 2 at the nominal cadence, capped at the stride budget (the gait
+ * raises the cadence beyond it), plus an eighth for the velocity's
+ * transients and the margin learnt while walking (stroke_margin_um), at
+ * most the reach box. 0 for a command that stands. */
+int xgo_motion_stroke(const xgo_motion_t *m, const xgo_gait_command_t *cmd,
+                      xgo_vec3_t stroke[XGO_LEG_COUNT])
+{
+    const uint8_t type = cmd->mark_time_um > 0 ? (uint8_t)XGO_GAIT_TROT : cmd->type;
+    const int32_t half_ms = (int32_t)(xgo_gait_duty_pct(type) * xgo_gait_period_ms(type, cmd->pace) / 200u);
+    /* under yaw the stance path is an arc, not the chord checked: a little more */
+    const int32_t yaw_extra = (int32_t)((uint32_t)abs32(cmd->vyaw_mdeg_s) / 10u); /* 10 mm at 100 deg/s */
+    int32_t most = 0, cap_q15;
+    unsigned leg;
+    if (cmd->vx_um_s == 0 && cmd->vy_um_s == 0 && cmd->vyaw_mdeg_s == 0) {
+        return 0;
+    }
+    for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
+        const int64_t wy = ((int64_t)cmd->vyaw_mdeg_s * m->stance_um[leg].y * K_YAW_Q32) >> 32;
+        const int64_t wx = ((int64_t)cmd->vyaw_mdeg_s * m->stance_um[leg].x * K_YAW_Q32) >> 32;
+        /* um/s * ms / 1000, as * 1049 / 2^20 */
+        stroke[leg].x = (int32_t)(((cmd->vx_um_s - wy) * half_ms * 1049) >> 20);
+        stroke[leg].y = (int32_t)(((cmd->vy_um_s + wx) * half_ms * 1049) >> 20);
+        stroke[leg].z = 0;
+        most = abs32(stroke[leg].x) > most ? abs32(stroke[leg].x) : most;
+        most = abs32(stroke[leg].y) > most ? abs32(stroke[leg].y) : most;
+    }
+    /* the cap as a factor: one 32-bit division */
+    cap_q15 = most > XGO_GAIT_HALF_STRIDE_X_UM ? ((int32_t)XGO_GAIT_HALF_STRIDE_X_UM << 15) / most : 1 << 15;
+    for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
+        stroke[leg].x = (int32_t)(((int64_t)stroke[leg].x * cap_q15) >> 15);
+        stroke[leg].y = (int32_t)(((int64_t)stroke[leg].y * cap_q15) >> 15);
+        {   /* longer by an eighth and the margin, along the stroke */
+            const int32_t len = (int32_t)xgo_isqrt32((uint32_t)(stroke[leg].x * stroke[leg].x) +
+                                                     (uint32_t)(stroke[leg].y * stroke[leg].y));
+            const int32_t to = len + len / 8 + m->stroke_margin_um + yaw_extra;
+            if (len > 0) {
+                stroke[leg].x = stroke[leg].x * (to / 8) / (len / 8 + 1); /* < 2^31, 32-bit */
+                stroke[leg].y = stroke[leg].y * (to / 8) / (len / 8 + 1);
+            }
+        }
+        stroke[leg].x = clamp32(stroke[leg].x, -XGO_GAIT_REACH_X_UM, XGO_GAIT_REACH_X_UM);
+        stroke[leg].y = clamp32(stroke[leg].y, -XGO_GAIT_REACH_X_UM, XGO_GAIT_REACH_X_UM);
+    }
+    return 1;
 }
