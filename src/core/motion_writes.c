@@ -11,12 +11,7 @@
 
 static int any_written(xgo_regs_t *r, unsigned first, unsigned last)
 {
-    int any = 0;
-    unsigned a;
-    for (a = first; a <= last; a++) {
-        any |= xgo_regs_take_written(r, (uint8_t)a);
-    }
-    return any;
+    return xgo_regs_take_written_range(r, (uint8_t)first, (uint8_t)last);
 }
 
 static void stop_action(xgo_motion_t *m)
@@ -119,7 +114,6 @@ static void capture_servo_commands(xgo_motion_t *m, xgo_regs_t *r, int entering)
  * the mode back one tick later. */
 static void take_group_writes(xgo_motion_t *m, xgo_regs_t *r)
 {
-    unsigned i;
     int servo = 0;
     int whole = any_written(r, XGO_REG_VX, XGO_REG_MOVE_MODE);
     whole |= any_written(r, XGO_REG_PERIOD_X, XGO_REG_PERIOD_Z);
@@ -132,9 +126,8 @@ static void take_group_writes(xgo_motion_t *m, xgo_regs_t *r)
     }
     /* Servo group: peek, so capture_servo_commands sees which joints. */
     servo = xgo_regs_take_written(r, XGO_REG_SERVO_SPEED);
-    for (i = 0; i < XGO_SERVO_COUNT; i++) {
-        servo |= xgo_regs_was_written(r, (uint8_t)(XGO_REG_SERVO11 + i));
-    }
+    servo |= xgo_regs_was_written_range(r, XGO_REG_SERVO11,
+                                        (uint8_t)(XGO_REG_SERVO11 + XGO_SERVO_COUNT - 1u));
     if (servo) {
         capture_servo_commands(m, r, m->group_mode != XGO_MODE_SERVO);
         m->group_mode = XGO_MODE_SERVO;

@@ -48,6 +48,10 @@ void xgo_regs_set(xgo_regs_t *r, uint8_t addr, uint8_t value);
 int xgo_regs_take_written(xgo_regs_t *r, uint8_t addr);
 /* The same without consuming the flag. */
 int xgo_regs_was_written(const xgo_regs_t *r, uint8_t addr);
+/* True if the host wrote any address in [first, last] (first <= last);
+ * the take_ form clears all their flags. */
+int xgo_regs_take_written_range(xgo_regs_t *r, uint8_t first, uint8_t last);
+int xgo_regs_was_written_range(const xgo_regs_t *r, uint8_t first, uint8_t last);
 
 /* Board-side updates of computed registers. */
 void xgo_regs_set_attitude(xgo_regs_t *r, int32_t roll_mdeg, int32_t pitch_mdeg, int32_t yaw_mdeg);

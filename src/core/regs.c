@@ -111,6 +111,39 @@ int xgo_regs_take_written(xgo_regs_t *r, uint8_t addr)
     return was;
 }
 
+/* Mask of the bits of written[byte] that lie in [first, last]. */
+static uint8_t range_mask(unsigned byte, uint8_t first, uint8_t last)
+{
+    const unsigned lo = byte == (first >> 3u) ? (first & 7u) : 0u;
+    const unsigned hi = byte == (last >> 3u) ? (last & 7u) : 7u;
+    return (uint8_t)((0xFFu << lo) & (0xFFu >> (7u - hi)));
+}
+
+/* A byte of flags at a time: the motion core asks for whole register
+ * groups every tick (about 50 single flags otherwise). */
+int xgo_regs_take_written_range(xgo_regs_t *r, uint8_t first, uint8_t last)
+{
+    unsigned byte;
+    int any = 0;
+    for (byte = first >> 3u; byte <= (unsigned)(last >> 3u); byte++) {
+        const uint8_t mask = range_mask(byte, first, last);
+        any |= (r->written[byte] & mask) != 0;
+        r->written[byte] = (uint8_t)(r->written[byte] & ~mask);
+    }
+    return any;
+}
+
+int xgo_regs_was_written_range(const xgo_regs_t *r, uint8_t first, uint8_t last)
+{
+    unsigned byte;
+    for (byte = first >> 3u; byte <= (unsigned)(last >> 3u); byte++) {
+        if (r->written[byte] & range_mask(byte, first, last)) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
 /* The flat image of the firmware window: every byte but 0x09 (gait type). */
 static void store_firmware(xgo_regs_t *r)
 {
