@@ -7,9 +7,10 @@
 
 #include "check.h"
 
-static int32_t clamp_joint(const xgo_servos_t *s, unsigned i, int32_t mdeg)
+/* joint: 0..2 (servo index % 3), the profile's joint ranges */
+static int32_t clamp_joint(const xgo_servos_t *s, unsigned joint, int32_t mdeg)
 {
-    const xgo_range_t *r = &s->profile->joint_mdeg[i % XGO_JOINT_COUNT];
+    const xgo_range_t *r = &s->profile->joint_mdeg[joint];
     return mdeg < r->lo ? r->lo : (mdeg > r->hi ? r->hi : mdeg);
 }
 
@@ -20,18 +21,20 @@ void xgo_servos_init(xgo_servos_t *s, const xgo_profile_t *profile,
     memset(s, 0, sizeof *s);
     s->profile = profile;
     for (i = 0; i < XGO_SERVO_COUNT; i++) {
-        s->angle_mdeg[i] = clamp_joint(s, i, initial_mdeg[i]);
+        s->angle_mdeg[i] = clamp_joint(s, i % XGO_JOINT_COUNT, initial_mdeg[i]);
         s->target_mdeg[i] = s->angle_mdeg[i];
     }
 }
 
 void xgo_servos_set_targets(xgo_servos_t *s, const int32_t target_mdeg[XGO_SERVO_COUNT])
 {
-    unsigned i;
+    unsigned i, joint = 0;
+    /* joint counts along (no i % 3: a library division per servo on an M0) */
     for (i = 0; i < XGO_SERVO_COUNT; i++) {
         if ((s->unloaded & (1u << i)) == 0) {
-            s->target_mdeg[i] = clamp_joint(s, i, target_mdeg[i]);
+            s->target_mdeg[i] = clamp_joint(s, joint, target_mdeg[i]);
         }
+        joint = joint + 1u == XGO_JOINT_COUNT ? 0u : joint + 1u;
     }
 }
 
@@ -94,7 +97,7 @@ void xgo_servos_record_zero(xgo_servos_t *s)
             offset += 360000;
         }
         s->zero_offset_mdeg[i] = offset;
-        s->angle_mdeg[i] = clamp_joint(s, i, 0);
+        s->angle_mdeg[i] = clamp_joint(s, i % XGO_JOINT_COUNT, 0);
         s->target_mdeg[i] = s->angle_mdeg[i];
     }
 }
