@@ -76,14 +76,16 @@ typedef struct action_s {
  * Conventions (actions.h): x forward, y left, z up; roll + lifts the
  * left side, pitch + lowers the nose, yaw + turns left. Legs: LF RF RH LH. */
 
-/* 1 lie down, 3 s: hind end first, body down to 77.5 mm, rest, back up. */
+/* 1 lie down, 3 s: hind end down first, then the belly on the floor (the
+ * hips 49 mm low: 48.6 mm above the ground; knees folded to -51 degrees,
+ * hips at 88 of their 93), rest, back up. */
 #define LIE_DOWN_CH (CH(C_BZ) | CH(C_PITCH))
 static const int8_t k_lie_down[] = {
     /* dt       bz  pitch */
-    DT(50),   -8,  -6,
-    DT(50),  -20,   0,
-    DT(100), -20,   0,
-    DT(100),   0,   0,
+    DT(60),  -25,  -6,
+    DT(50),  -49,   0,
+    DT(80),  -49,   0,
+    DT(110),   0,   0,
 };
 CHECK_TABLE(k_lie_down, LIE_DOWN_CH);
 
@@ -91,57 +93,34 @@ CHECK_TABLE(k_lie_down, LIE_DOWN_CH);
 #define STAND_UP_CH (CH(C_BZ) | CH(C_PITCH))
 static const int8_t k_stand_up[] = {
     /* dt      bz  pitch */
-    DT(60), -20,   0,
-    DT(40), -20,   0,
-    DT(60),  -6, -10,
+    DT(70), -49,   0,
+    DT(30), -49,   0,
+    DT(60), -15, -10,
     DT(60),  15,   0,
     DT(30),  15,   0,
     DT(50),   0,   0,
 };
 CHECK_TABLE(k_stand_up, STAND_UP_CH);
 
-/* 3 creep, 5 s: body low, crawl gait in place, two cycles. One leg swings
- * at a time (order LF RH RF LH, 15 mm lift, +-12 mm stride) while the feet
- * on the ground slide back (the body creeps forward over them); between
- * swings, with all four feet down, the body shifts 12 mm sideways so that
- * it is always over the three supporting feet. */
-#define CREEP_CH                                                                                  \
-    (CH(C_BY) | CH(C_BZ) | CH(C_LFX) | CH(C_LFZ) | CH(C_RFX) | CH(C_RFZ) | CH(C_RHX) |          \
-     CH(C_RHZ) | CH(C_LHX) | CH(C_LHZ))
+/* 3 creep, 5 s: the body 18 mm low (hips at 79.6 mm), then the walk gait
+ * (one foot at a time, lifted 10 mm) forward at 60 mm/s for 2.5 s - 15 cm
+ * (k_walks) - then up. The keyframes give the body; the gait the feet. */
+#define CREEP_CH (CH(C_BZ))
 static const int8_t k_creep[] = {
-    /* dt      by  bz  LFx LFz  RFx RFz  RHx RHz  LHx LHz */
-    DT(50),   -6, -15, -12,  0,   4,  0,  -4,  0,  12,  0, /* lower, stagger the feet */
-    DT(18),   -6, -15,   0, 15,   0,  0,  -8,  0,   8,  0, /* loop: LF swings */
-    DT(18),   -6, -15,  12,  0,  -4,  0, -12,  0,   4,  0,
-    DT(14),    6, -15,  12,  0,  -4,  0, -12,  0,   4,  0, /* shift left */
-    DT(18),    6, -15,   8,  0,  -8,  0,   0, 15,   0,  0, /* RH swings */
-    DT(18),    6, -15,   4,  0, -12,  0,  12,  0,  -4,  0,
-    DT(14),    6, -15,   4,  0, -12,  0,  12,  0,  -4,  0,
-    DT(18),    6, -15,   0,  0,   0, 15,   8,  0,  -8,  0, /* RF swings */
-    DT(18),    6, -15,  -4,  0,  12,  0,   4,  0, -12,  0,
-    DT(14),   -6, -15,  -4,  0,  12,  0,   4,  0, -12,  0, /* shift right */
-    DT(18),   -6, -15,  -8,  0,   8,  0,   0,  0,   0, 15, /* LH swings */
-    DT(18),   -6, -15, -12,  0,   4,  0,  -4,  0,  12,  0,
-    DT(14),   -6, -15, -12,  0,   4,  0,  -4,  0,  12,  0,
-    DT(50),    0,   0,   0,  0,   0,  0,   0,  0,   0,  0,
+    /* dt      bz */
+    DT(50),  -18, /* lower */
+    DT(250), -18, /* crawl (k_walks: 0.5 .. 3 s) */
+    DT(100), -18, /* the gait stops, feet home */
+    DT(100),   0, /* up */
 };
 CHECK_TABLE(k_creep, CREEP_CH);
 
-/* 4 circle, 5 s: the body travels a horizontal ellipse (15 x 12 mm),
- * leaning 10 degrees toward where it is, two turns of 2 s. */
-#define CIRCLE_CH (CH(C_BX) | CH(C_BY) | CH(C_ROLL) | CH(C_PITCH))
+/* 4 circle, 5 s: the dog turns round on the spot - the trot turning at
+ * 120 deg/s for 3 s, a full turn (k_walks) - then stands. */
+#define CIRCLE_CH 0ul
 static const int8_t k_circle[] = {
-    /* dt      bx   by roll pitch */
-    DT(50),  15,   0,   0,  10,
-    DT(25),  11,   8,  -7,   7, /* loop: one turn */
-    DT(25),   0,  12, -10,   0,
-    DT(25), -11,   8,  -7,  -7,
-    DT(25), -15,   0,   0, -10,
-    DT(25), -11,  -8,   7,  -7,
-    DT(25),   0, -12,  10,   0,
-    DT(25),  11,  -8,   7,   7,
-    DT(25),  15,   0,   0,  10,
-    DT(50),   0,   0,   0,   0,
+    DT(250),
+    DT(250),
 };
 CHECK_TABLE(k_circle, CIRCLE_CH);
 
@@ -244,13 +223,17 @@ static const int8_t k_pee[] = {
 };
 CHECK_TABLE(k_pee, PEE_CH);
 
-/* 12 sit, 5 s: body back, hind end down (nose up 20 degrees), hold. */
+/* 12 sit, 5 s: rump back and down, the front legs straight: the body 56 mm
+ * back over the hind feet and 22 mm low, nose up 28 degrees - the rear hips
+ * 40 mm above the ground, the front knees at 54 of their 57 degrees -
+ * hold 2.2 s, up. The feet stay where they stand. */
 #define SIT_CH (CH(C_BX) | CH(C_BZ) | CH(C_PITCH))
 static const int8_t k_sit[] = {
     /* dt       bx  bz pitch */
-    DT(100),  -12, -4, -20,
-    DT(250),  -12, -4, -20,
-    DT(150),    0,  0,   0,
+    DT(60),  -25, -10, -12,
+    DT(60),  -56, -22, -28,
+    DT(220), -56, -22, -28,
+    DT(160),   0,   0,   0,
 };
 CHECK_TABLE(k_sit, SIT_CH);
 
@@ -287,18 +270,19 @@ static const int8_t k_stretch[] = {
 };
 CHECK_TABLE(k_stretch, STRETCH_CH);
 
-/* 15 wave, 6 s: weight right and back, left front paw up 45 mm and
- * forward, waved sideways five times. */
+/* 15 wave, 6 s: weight right and back, the left front paw high (60 mm) and
+ * forward, waved from side to side (+18 / -12 mm) five times - beckon keeps
+ * its paw low and curls it toward the body instead. */
 #define WAVE_CH                                                                                   \
     (CH(C_BX) | CH(C_BY) | CH(C_ROLL) | CH(C_PITCH) | CH(C_LFX) | CH(C_LFY) | CH(C_LFZ))
 static const int8_t k_wave[] = {
     /* dt     bx   by roll pitch LFx LFy LFz */
-    DT(60), -10, -12,  4,  -6,   0,  0,  0,
-    DT(60), -10, -12,  4,  -6,  20,  0, 45,
-    DT(40), -10, -12,  4,  -6,  20, 10, 45, /* loop: wave */
-    DT(40), -10, -12,  4,  -6,  20, -8, 45,
-    DT(40), -10, -12,  4,  -6,   0,  0,  0,
-    DT(40),   0,   0,  0,   0,   0,  0,  0,
+    DT(60), -12, -12,  6,  -8,   0,   0,  0,
+    DT(60), -12, -12,  6,  -8,  25,   0, 60,
+    DT(35), -12, -12,  6,  -8,  25,  18, 60, /* loop: wave */
+    DT(35), -12, -12,  6,  -8,  25, -12, 60,
+    DT(50), -12, -12,  6,  -8,   0,   0,  0,
+    DT(80),   0,   0,  0,   0,   0,   0,  0,
 };
 CHECK_TABLE(k_wave, WAVE_CH);
 
@@ -314,16 +298,18 @@ static const int8_t k_sway[] = {
 };
 CHECK_TABLE(k_sway, SWAY_CH);
 
-/* 17 beg for food, 4 s: sit back, front paws up in turn. */
+/* 17 beg for food, 4 s: sit (as 12) and raise both front paws to the chest
+ * (40 mm up, 15 mm back), paddle them twice, down, up. */
 #define BEG_CH                                                                                    \
     (CH(C_BX) | CH(C_BZ) | CH(C_PITCH) | CH(C_LFX) | CH(C_LFZ) | CH(C_RFX) | CH(C_RFZ))
 static const int8_t k_beg[] = {
     /* dt       bx  bz pitch LFx LFz RFx RFz */
-    DT(80),   -15, -5, -16,   0,  0,   0,  0,
-    DT(40),   -15, -5, -16,  10, 20,   0,  0, /* loop: paddle */
-    DT(40),   -15, -5, -16,   0,  0,  10, 20,
-    DT(40),   -15, -5, -16,   0,  0,   0,  0,
-    DT(120),    0,  0,   0,   0,  0,   0,  0,
+    DT(70),   -56, -22, -28,   0,  0,   0,  0,
+    DT(40),   -56, -22, -30, -15, 40, -15, 40,
+    DT(30),   -56, -22, -30, -12, 46, -12, 46, /* loop: paddle */
+    DT(30),   -56, -22, -30, -15, 40, -15, 40,
+    DT(40),   -56, -22, -28,   0,  0,   0,  0,
+    DT(130),    0,   0,   0,   0,  0,   0,  0,
 };
 CHECK_TABLE(k_beg, BEG_CH);
 
@@ -435,8 +421,8 @@ static const action_t k_actions[XGO_ACTION_LAST + 1u] = {
     NO_ACTION,
     ACTION(k_lie_down, LIE_DOWN_CH, 0, 0, 1, 3, "lie down"),
     ACTION(k_stand_up, STAND_UP_CH, 0, 0, 1, 3, "stand up"),
-    ACTION(k_creep, CREEP_CH, 1, 12, 2, 5, "creep"),
-    ACTION(k_circle, CIRCLE_CH, 1, 8, 2, 5, "circle"),
+    ACTION(k_creep, CREEP_CH, 0, 0, 1, 5, "creep"),
+    ACTION(k_circle, CIRCLE_CH, 0, 0, 1, 5, "circle"),
     ACTION(k_step, STEP_CH, 0, 3, 8, 4, "step"),
     ACTION(k_squat, SQUAT_CH, 1, 2, 3, 4, "squat"),
     ACTION(k_roll, ROLL_CH, 0, 0, 1, 4, "roll"),
@@ -449,7 +435,7 @@ static const action_t k_actions[XGO_ACTION_LAST + 1u] = {
     ACTION(k_stretch, STRETCH_CH, 0, 0, 1, 10, "stretch"),
     ACTION(k_wave, WAVE_CH, 2, 3, 5, 6, "wave"),
     ACTION(k_sway, SWAY_CH, 1, 2, 2, 6, "sway"),
-    ACTION(k_beg, BEG_CH, 1, 2, 2, 4, "beg for food"),
+    ACTION(k_beg, BEG_CH, 2, 3, 2, 4, "beg for food"),
     ACTION(k_search, SEARCH_CH, 0, 0, 1, 6, "search for food"),
     ACTION(k_shake, SHAKE_CH, 2, 3, 6, 10, "shake hands"),
     ACTION(k_chicken, CHICKEN_CH, 0, 1, 8, 9, "chicken head"),
@@ -470,6 +456,38 @@ static const action_t *lookup(uint8_t id)
         return NULL;
     }
     return &k_actions[id];
+}
+
+/* ------------------------------------------------------------ walking */
+
+/* Actions that walk: while the keyframe time is within [from, until) cs the
+ * gait follows the command (its speeds scaled like the keyframes' time
+ * after a lead-in, so the distance and the turn stay what they are); the
+ * keyframes give the body pose, the gait the feet. */
+typedef struct walk_s {
+    uint8_t id;
+    uint8_t type;   /* register 0x09: 0 trot, 1 walk */
+    uint8_t pace;   /* register 0x3D */
+    uint8_t lift_mm; /* swing height, 0 = the gait's */
+    int16_t vx_mm_s, vy_mm_s, vyaw_deg_s;
+    uint16_t from_cs, until_cs;
+} walk_t;
+
+static const walk_t k_walks[] = {
+    /* 15 cm forward, one foot at a time, feet lifted only 10 mm: the body is low */
+    {XGO_ACTION_CREEP, 1u, 0u, 10u, 60, 0, 0, 50u, 300u},
+    {XGO_ACTION_CIRCLE, 0u, 0u, 0u, 0, 0, 120, 10u, 310u}, /* 360 degrees */
+};
+
+static const walk_t *walk_of(uint8_t id)
+{
+    unsigned i;
+    for (i = 0; i < sizeof k_walks / sizeof k_walks[0]; i++) {
+        if (k_walks[i].id == id) {
+            return &k_walks[i];
+        }
+    }
+    return NULL;
 }
 
 /* ------------------------------------------------------------ sequence */
@@ -675,6 +693,30 @@ int xgo_action_tick(xgo_action_player_t *p, xgo_pose_t *out)
         ++p->seg;
     }
     evaluate(a, p->seg, now_q8 - ((uint32_t)p->seg_start << 8), out);
+    return 1;
+}
+
+int xgo_action_walk(const xgo_action_player_t *p, xgo_action_walk_t *w)
+{
+    const walk_t *k = walk_of(p->id);
+    uint32_t now_q8;
+    w->vx_um_s = w->vy_um_s = w->vyaw_mdeg_s = 0;
+    if (k == NULL) {
+        return 0;
+    }
+    w->type = k->type;
+    w->pace = k->pace;
+    w->step_height_um = (int32_t)k->lift_mm * 1000;
+    if (p->lead == LEAD_HELD) {
+        return 1;
+    }
+    now_q8 = ((uint32_t)(p->elapsed - p->lead) * p->scale_q16) >> 8;
+    if (now_q8 >= ((uint32_t)k->from_cs * TICKS_PER_CS) << 8 && now_q8 < ((uint32_t)k->until_cs * TICKS_PER_CS) << 8) {
+        /* x 1000 (um, mdeg) x scale / 2^16 */
+        w->vx_um_s = (int32_t)(((int64_t)k->vx_mm_s * 1000 * p->scale_q16) >> 16);
+        w->vy_um_s = (int32_t)(((int64_t)k->vy_mm_s * 1000 * p->scale_q16) >> 16);
+        w->vyaw_mdeg_s = (int32_t)(((int64_t)k->vyaw_deg_s * 1000 * p->scale_q16) >> 16);
+    }
     return 1;
 }
 

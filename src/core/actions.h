@@ -64,6 +64,21 @@ void xgo_action_go(xgo_action_player_t *p);
 /* 1 while held in the lead-in. */
 int xgo_action_held(const xgo_action_player_t *p);
 
+/* The command of an action that walks (creep, circle): velocity in um/s and
+ * mdeg/s, swing height, gait type and pace (registers 0x09, 0x3D values). */
+typedef struct xgo_action_walk_s {
+    int32_t vx_um_s, vy_um_s, vyaw_mdeg_s;
+    int32_t step_height_um; /* the swing height, 0 = the gait's */
+    uint8_t type, pace;
+} xgo_action_walk_t;
+
+/* 1 if the running action walks: its feet come from the gait, its
+ * keyframes give only the body (and the player's feet offsets are zero);
+ * then *w is the gait's command at the keyframe time of the last tick -
+ * zero before and after its walking window and during a lead-in. 0 (and a
+ * zero command) for every other action. */
+int xgo_action_walk(const xgo_action_player_t *p, xgo_action_walk_t *w);
+
 /* Stop at once; the next tick returns 0 with the zero pose. */
 void xgo_action_stop(xgo_action_player_t *p);
 

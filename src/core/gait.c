@@ -293,6 +293,7 @@ static void limit_command(const xgo_gait_command_t *cmd, gait_tick_t *x)
     x->target[1] = clamp32(cmd->vy_um_s, -XGO_GAIT_VY_CLAMP_UM_S, XGO_GAIT_VY_CLAMP_UM_S);
     x->target[2] = clamp32(cmd->vyaw_mdeg_s, -XGO_GAIT_VYAW_CLAMP_MDEG_S, XGO_GAIT_VYAW_CLAMP_MDEG_S);
     x->mark = clamp32(cmd->mark_time_um, 0, XGO_GAIT_MAX_HEIGHT_UM);
+    x->height = clamp32(cmd->step_height_um, 0, XGO_GAIT_MAX_HEIGHT_UM);
     x->want_type = x->mark > 0 ? (uint8_t)XGO_GAIT_TROT
                                : (cmd->type < XGO_GAIT_TYPE_COUNT ? cmd->type : (uint8_t)XGO_GAIT_TROT);
     x->pace = cmd->pace < XGO_PACE_COUNT ? cmd->pace : (uint8_t)XGO_PACE_NORMAL;
@@ -589,7 +590,7 @@ static void lift_feet(xgo_gait_t *g, const gait_tick_t *x)
             g->lift_q8[leg][1] = g->pos_q8[leg][1];
             /* still down for the part of the tick before the lift-off */
             stance_part(x, g->lift_q8[leg], g->phase - x->t->lift[leg], 1);
-            g->swing_height_um[leg] = x->mark > 0 ? x->mark : x->t->height_um;
+            g->swing_height_um[leg] = x->mark > 0 ? x->mark : (x->height > 0 ? x->height : x->t->height_um);
         }
     }
 }

@@ -134,6 +134,8 @@ typedef struct xgo_gait_command_s {
     int32_t vyaw_mdeg_s;  /* yaw rate, counter-clockwise positive, mdeg/s */
     int32_t mark_time_um; /* > 0: keep stepping (trot timing) with this swing
                              height, in place when the velocity is zero; 0 = off */
+    int32_t step_height_um; /* > 0: the swing height instead of the gait's
+                               (an action's creep); 0 = the gait's */
     uint8_t type;         /* xgo_gait_type_t; out of range = trot */
     uint8_t pace;         /* xgo_pace_t; out of range = normal */
 } xgo_gait_command_t;

@@ -38,6 +38,7 @@ typedef struct gait_tick_s {
     /* the command, limited (limit stage) */
     int32_t target[3];   /* vx, vy (um/s), vyaw (mdeg/s) the ramp heads for */
     int32_t mark;        /* mark-time swing height, 0 = off */
+    int32_t height;      /* swing height asked for, 0 = the table's */
     uint8_t want_type;   /* gait table asked for */
     uint8_t pace;
     int resting;         /* zero command: stop once every foot is home */

@@ -194,10 +194,26 @@ static void transition_step(xgo_motion_t *m, const xgo_body_pose_t *home, xgo_ve
 
 /* ------------------------------------------------------------ whole unit */
 
-/* A running action: its keyframes, or while it holds them, the way to the
- * stance (lead-in); the player counts the ticks either way. */
-static void action_targets(xgo_motion_t *m, xgo_body_pose_t *pose, xgo_vec3_t feet[XGO_LEG_COUNT])
+/* The gait's feet and contacts after a tick under cmd; returns its yaw rate. */
+static int32_t gait_feet(xgo_motion_t *m, const xgo_gait_command_t *cmd, xgo_vec3_t feet[XGO_LEG_COUNT])
 {
+    unsigned leg;
+    xgo_gait_tick(&m->gait, cmd);
+    m->contact = 0;
+    for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
+        m->contact |= (uint8_t)(m->gait.contact[leg] << leg);
+        feet[leg] = m->gait.foot_um[leg];
+    }
+    return m->gait.vyaw_mdeg_s;
+}
+
+/* A running action: its keyframes, or while it holds them, the way to the
+ * stance (lead-in); the player counts the ticks either way. An action that
+ * walks (creep, circle) takes its feet from the gait, under its command. */
+static void action_targets(xgo_motion_t *m, xgo_body_pose_t *pose, xgo_vec3_t feet[XGO_LEG_COUNT],
+                           int32_t *yaw_rate_mdeg_s)
+{
+    xgo_action_walk_t w;
     if (xgo_action_held(&m->actions) && !away_from(m, &m->stand)) {
         xgo_action_go(&m->actions);
     }
@@ -211,6 +227,17 @@ static void action_targets(xgo_motion_t *m, xgo_body_pose_t *pose, xgo_vec3_t fe
         return;
     }
     action_pose(m, pose, feet);
+    if (xgo_action_walk(&m->actions, &w)) {
+        xgo_gait_command_t cmd;
+        memset(&cmd, 0, sizeof cmd);
+        cmd.vx_um_s = w.vx_um_s;
+        cmd.vy_um_s = w.vy_um_s;
+        cmd.vyaw_mdeg_s = w.vyaw_mdeg_s;
+        cmd.step_height_um = w.step_height_um;
+        cmd.type = w.type;
+        cmd.pace = w.pace;
+        *yaw_rate_mdeg_s = gait_feet(m, &cmd, feet);
+    }
     m->pose_target = *pose;
     xgo_follow_take(&m->follow, pose);
 }
@@ -280,7 +307,6 @@ static int whole_unit_targets(xgo_motion_t *m, const xgo_regs_t *r, int32_t q[XG
     xgo_vec3_t feet[XGO_LEG_COUNT];
     xgo_body_pose_t pose;
     int walking = 1;
-    unsigned leg;
 
     *yaw_rate_mdeg_s = 0;
     if (xgo_settle_active(&m->settle)) { /* a body still coasting turns on the IMU */
@@ -289,7 +315,7 @@ static int whole_unit_targets(xgo_motion_t *m, const xgo_regs_t *r, int32_t q[XG
         *yaw_rate_mdeg_s = v[2];
     }
     if (m->action_id != 0) {
-        action_targets(m, &pose, feet);
+        action_targets(m, &pose, feet, yaw_rate_mdeg_s);
     } else {
         xgo_gait_command_t cmd;
         gait_command(m, r, &cmd);
@@ -300,14 +326,8 @@ static int whole_unit_targets(xgo_motion_t *m, const xgo_regs_t *r, int32_t q[XG
             if (m->reach.searching && xgo_gait_is_standing(&m->gait)) {
                 memset(&cmd, 0, sizeof cmd); /* the first step waits for a pose the stroke holds */
             }
-            xgo_gait_tick(&m->gait, &cmd);
-            m->contact = 0;
-            for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
-                m->contact |= (uint8_t)(m->gait.contact[leg] << leg);
-                feet[leg] = m->gait.foot_um[leg];
-            }
+            *yaw_rate_mdeg_s = gait_feet(m, &cmd, feet);
             walking = !xgo_gait_is_standing(&m->gait);
-            *yaw_rate_mdeg_s = m->gait.vyaw_mdeg_s;
         }
         xgo_follow_tick(&m->follow, &m->pose_target, &pose);
         walking = walking || !xgo_follow_at(&m->follow, &m->pose_target);
