@@ -189,7 +189,8 @@ static void drain(fuzz_run_t *r)
 }
 
 /* Byte 0: bit 0 Lite, bits 1-2 the silence timeout, bit 3 through the
- * device layer, bits 4-7 the battery (x 7 %, at most 100). */
+ * device layer, bits 4-7 the battery (0..15 -> 0..100 %: the API takes at
+ * most 100, more is a caller bug that XGO_ASSERT stops). */
 static void start(fuzz_run_t *r, uint8_t config)
 {
     static const uint32_t k_timeouts[4] = {0, 5, XGO_PARSER_DEFAULT_TIMEOUT_MS, 200};
@@ -200,7 +201,7 @@ static void start(fuzz_run_t *r, uint8_t config)
     xgo_board_default_config(&cfg);
     cfg.model = (config & 1u) ? XGO_MODEL_LITE : XGO_MODEL_MINI;
     cfg.parser_timeout_ms = k_timeouts[(config >> 1) & 3u];
-    cfg.battery_pct = (uint8_t)((config >> 4) * 7u);
+    cfg.battery_pct = (uint8_t)((config >> 4) * 100u / 15u);
     if (config & FUZZ_CONFIG_DEVICE) {
         fuzz_device_init(&device, &port, &cfg);
         r->device = &device;
