@@ -210,8 +210,10 @@ static void test_reset_written_mid_sit(void)
 {
     footprint_t f;
     uint32_t k, reading;
+    xgo_world_pose_t before, after;
     wr(XGO_REG_ACTION, XGO_ACTION_SIT);
     xgo_test_ticks(&board, 1200);
+    xgo_board_world_pose(&board, &before);
     wr(XGO_REG_ACTION, XGO_ACTION_RESET);
     reading = rd(XGO_REG_ACTION) == XGO_ACTION_RESET;
     footprint_start(&f);
@@ -220,6 +222,10 @@ static void test_reset_written_mid_sit(void)
         reading += rd(XGO_REG_ACTION) == XGO_ACTION_RESET;
     }
     assert_eased(&f, "reset mid-sit");
+    xgo_board_world_pose(&board, &after); /* the robot did not move on the floor */
+    TEST_ASSERT_INT32_WITHIN(10, before.x_um, after.x_um);
+    TEST_ASSERT_INT32_WITHIN(10, before.y_um, after.y_um);
+    TEST_ASSERT_INT32_WITHIN(10, before.yaw_mdeg, after.yaw_mdeg);
     TEST_ASSERT_EQUAL_UINT32(xgo_action_duration_ticks(XGO_ACTION_RESET), reading);
     assert_home();
 }
