@@ -218,6 +218,33 @@ static void check_isqrt64(uint64_t x)
     }
 }
 
+/* xgo_udiv64_cap is min(floor(n / d), cap), checked against the host's
+ * 64-bit division: caps of every size, quotients below, at and above the
+ * cap, divisors up to the documented bound, and the edges. */
+static void test_udiv64_cap_is_the_capped_quotient(void)
+{
+    static const uint32_t caps[] = {0u, 1u, 255u, 65535u, 65536u, 0x7FFFFFFFu, 0xFFFFFFFFu};
+    unsigned c, i;
+    for (c = 0; c < sizeof caps / sizeof caps[0]; ++c) {
+        const uint32_t cap = caps[c];
+        const unsigned bits = xgo_bit_length(cap);
+        for (i = 0; i < 20000; ++i) {
+            /* divisors within 2^(63 - bits), numerators around cap * d */
+            const uint64_t d = (rnd64() >> (bits + 1u + rnd64() % 30u)) | 1u;
+            const uint64_t scale = cap == 0u ? 1u : (uint64_t)cap + (rnd64() % 3u) - 1u;
+            const uint64_t n = (i & 1u) ? rnd64() >> (rnd64() % 64u)
+                                        : (d * (scale < 1u ? 1u : scale)) >> (rnd64() % 4u);
+            const uint64_t q = n / d;
+            TEST_ASSERT_EQUAL_UINT32(q < cap ? (uint32_t)q : cap, xgo_udiv64_cap(n, d, cap));
+        }
+    }
+    TEST_ASSERT_EQUAL_UINT32(7u, xgo_udiv64_cap(12345u, 0u, 7u)); /* d == 0 */
+    TEST_ASSERT_EQUAL_UINT32(0u, xgo_udiv64_cap(0u, 3u, 100u));
+    TEST_ASSERT_EQUAL_UINT32(0xFFFFFFFFu, xgo_udiv64_cap(UINT64_MAX, 1u, 0xFFFFFFFFu));
+    TEST_ASSERT_EQUAL_UINT32(65536u, xgo_udiv64_cap((uint64_t)1 << 62, 3u, 65536u));
+    TEST_ASSERT_EQUAL_UINT32(4294967295u / 3u, xgo_udiv64_cap(4294967295u, 3u, 0xFFFFFFFFu));
+}
+
 static void test_isqrt_exact(void)
 {
     uint32_t i;
@@ -557,6 +584,7 @@ int main(void)
     RUN_TEST(test_saturating_add_sub_neg_abs);
     RUN_TEST(test_mul_q_exact_rounding_and_saturation);
     RUN_TEST(test_div_q_and_muldiv);
+    RUN_TEST(test_udiv64_cap_is_the_capped_quotient);
     RUN_TEST(test_isqrt_exact);
     RUN_TEST(test_q16_sqrt_against_libm);
     RUN_TEST(test_angle_conversions);

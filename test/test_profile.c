@@ -5,6 +5,7 @@
  */
 #include <stdio.h>
 
+#include "codec.h" /* XGO_RANGE_SPAN_LIMIT */
 #include "unity.h"
 #include "xgo/profile.h"
 #include "xgo/regs.h"
@@ -82,10 +83,43 @@ static void check_ranges(const xgo_profile_t *p)
     TEST_ASSERT_TRUE(p->mark_time_um.lo < p->mark_time_um.hi);
 }
 
+/* The register codec works in 32 bits because every range it maps spans
+ * less than XGO_RANGE_SPAN_LIMIT units (codec.h). */
+static void check_span(const xgo_range_t *r)
+{
+    TEST_ASSERT_TRUE(r->lo < r->hi);
+    TEST_ASSERT_TRUE((uint32_t)(r->hi - r->lo) < XGO_RANGE_SPAN_LIMIT);
+}
+
+static void check_spans(const xgo_profile_t *p)
+{
+    int j;
+    for (j = 0; j < 3; ++j) {
+        check_span(&p->joint_mdeg[j]);
+        check_span(&p->foot_um[j]);
+        check_span(&p->body_um[j]);
+        check_span(&p->body_mdeg[j]);
+    }
+    check_span(&p->mark_time_um);
+    if (p->arm != NULL) {
+        for (j = 0; j < XGO_ARM_JOINT_COUNT; ++j) {
+            check_span(&p->arm->joint_mdeg[j]);
+            check_span(&p->arm->read_mdeg[j]);
+        }
+        check_span(&p->arm->x_um);
+        check_span(&p->arm->z_um);
+        check_span(&p->arm->theta_mdeg);
+        check_span(&p->arm->r_um);
+    }
+}
+
 static void test_every_range_is_well_formed_and_mark_time_follows_the_vendor(void)
 {
     check_ranges(xgo_profile_mini());
     check_ranges(xgo_profile_lite());
+    check_spans(xgo_profile_mini());
+    check_spans(xgo_profile_lite());
+    check_spans(xgo_profile_mini2());
     /* vendor MARK_TIME_LIMIT: Mini 10..35 mm, Lite 10..25 mm */
     TEST_ASSERT_EQUAL_INT32(35000, xgo_profile_mini()->mark_time_um.hi);
     TEST_ASSERT_EQUAL_INT32(25000, xgo_profile_lite()->mark_time_um.hi);

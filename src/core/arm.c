@@ -70,9 +70,10 @@ static xgo_bam_t fold_angle(const xgo_arm_geometry_t *g, int64_t d2)
 {
     const int64_t num = d2 - (int64_t)g->upper_um * g->upper_um - (int64_t)g->fore_um * g->fore_um;
     const int64_t den = ((int64_t)2 * g->upper_um * g->fore_um) >> 10; /* > 2^20 */
-    int64_t c = (num * 1048576) / den;                                /* Q30; |num| < 2^43 */
-    c = c > ((int64_t)1 << 30) ? ((int64_t)1 << 30) : (c < -((int64_t)1 << 30) ? -((int64_t)1 << 30) : c);
-    return xgo_acos((xgo_q30_t)c);
+    /* Q30, |num| < 2^43; only [-1, 1] matters (no 64-bit division) */
+    const uint64_t mag = (uint64_t)(num < 0 ? -num : num) << 20;
+    const int32_t c = (int32_t)xgo_udiv64_cap(mag, (uint64_t)den, (uint32_t)1 << 30);
+    return xgo_acos(num < 0 ? -c : c);
 }
 
 /* Servo angles for the solution with fold angle k (either sign). Math

@@ -4,78 +4,78 @@
 #include "codec.h"
 
 #include "wide.h" /* XGO_CORE_NARROW_CPU */
+#include "check.h"
 #include "fixed.h"
 #include "xgo/regs.h"
 
 /* ------------------------------------------------------------ range map, joints, feet, body */
 
+/* Every range the codec maps spans less than XGO_RANGE_SPAN_LIMIT units
+ * (test_profile checks the profiles' ranges, the rest are constants here):
+ * then b * span, 255 * offset and (2b + 1) * span fit 32 bits and no 64-bit
+ * division is ever needed (none may run in a tick: docs/mcu.md). */
+static uint32_t span_of(const xgo_range_t *r)
+{
+    XGO_ASSERT(r->hi > r->lo && (uint32_t)(r->hi - r->lo) < XGO_RANGE_SPAN_LIMIT);
+    return (uint32_t)r->hi - (uint32_t)r->lo;
+}
+
 uint8_t xgo_range_to_byte(const xgo_range_t *r, int32_t v)
 {
-    int64_t span = (int64_t)r->hi - r->lo;
-    int64_t num;
-    if (span <= 0 || v <= r->lo) {
+    uint32_t span, num;
+    if (r->hi <= r->lo || v <= r->lo) {
         return 0u;
     }
     if (v >= r->hi) {
         return 255u;
     }
-    if (XGO_CORE_NARROW_CPU && span < ((int64_t)1 << 24)) {
-        /* 32-bit (the servo and foot ranges, every tick): 0 < off < span <
-         * 2^24, so num = 255 * off < 2^32 and span << 7 < 2^31. The quotient
-         * is below 255: eight steps of restoring division give it exactly,
-         * with no divide call on cores without a divider (Cortex-M0; with
-         * one, the plain division below is cheaper). */
-        uint32_t num32 = 255u * ((uint32_t)v - (uint32_t)r->lo);
-        uint32_t den = (uint32_t)span << 7;
+    span = span_of(r);
+    num = 255u * ((uint32_t)v - (uint32_t)r->lo); /* 0 < num < 255 * span < 2^31 */
+    if (XGO_CORE_NARROW_CPU) {
+        /* The quotient is below 255: eight steps of restoring division give
+         * it exactly, with no divide call on cores without a divider
+         * (Cortex-M0; with one, the plain division is cheaper). */
+        uint32_t den = span << 7;
         uint32_t q = 0;
         int i;
         for (i = 0; i < 8; ++i) {
             q <<= 1;
-            if (num32 >= den) {
-                num32 -= den;
+            if (num >= den) {
+                num -= den;
                 q |= 1u;
             }
             den >>= 1;
         }
         return (uint8_t)q;
     }
-    num = 255 * ((int64_t)v - r->lo); /* 0 < num < 255 * span */
     return (uint8_t)(num / span);
 }
 
 int32_t xgo_byte_to_range(const xgo_range_t *r, uint8_t b)
 {
-    int64_t span = (int64_t)r->hi - r->lo;
-    int64_t off;
-    if (span <= 0) {
+    if (r->hi <= r->lo) {
         return r->lo;
     }
     /* ceil(b * span / 255): rounding up (by less than one unit) makes
      * encode(decode(b)) == b for every byte whenever span >= 255 units. */
-    if (span < ((int64_t)1 << 23)) {
-        /* b * span + 254 < 2^31: a 32-bit division suffices */
-        return r->lo + (int32_t)(((uint32_t)b * (uint32_t)span + 254u) / 255u);
-    }
-    off = ((int64_t)b * span + 254) / 255; /* < 2^40 */
-    return xgo_sat32((int64_t)r->lo + off);
+    return (int32_t)((uint32_t)r->lo + ((uint32_t)b * span_of(r) + 254u) / 255u);
 }
 
 int32_t xgo_byte_to_range_mid(const xgo_range_t *r, uint8_t b)
 {
-    const int64_t span = (int64_t)r->hi - r->lo;
-    if (span <= 0 || b == 0xFFu) {
-        return span <= 0 ? r->lo : r->hi;
+    if (r->hi <= r->lo || b == 0xFFu) {
+        return r->hi <= r->lo ? r->lo : r->hi;
     }
-    return xgo_sat32((int64_t)r->lo + ((int64_t)(2u * b + 1u) * span + 255) / 510);
+    /* (2b + 1) * span + 255 < 511 * 2^23 + 255 < 2^32 */
+    return (int32_t)((uint32_t)r->lo + ((2u * b + 1u) * span_of(r) + 255u) / 510u);
 }
 
 int32_t xgo_servo_byte_to_range_mid(const xgo_range_t *r, uint8_t b)
 {
-    const int64_t span = (int64_t)r->hi - r->lo;
-    if (span <= 0 || b == 0u || b == 0xFFu) {
-        return (span <= 0 || b == 0u) ? r->lo : r->hi;
+    if (r->hi <= r->lo || b == 0u || b == 0xFFu) {
+        return (r->hi <= r->lo || b == 0u) ? r->lo : r->hi;
     }
-    return xgo_sat32((int64_t)r->lo + ((int64_t)(2u * b - 1u) * span + 254) / 508);
+    return (int32_t)((uint32_t)r->lo + ((2u * b - 1u) * span_of(r) + 254u) / 508u);
 }
 
 uint8_t xgo_joint_to_byte(const xgo_profile_t *p, xgo_joint_t joint, int32_t mdeg)
@@ -247,7 +247,8 @@ int32_t xgo_mark_time_byte_to_um(const xgo_profile_t *p, uint8_t b)
     if (b == 0) {
         return 0;
     }
-    return r->lo + xgo_muldiv(b, r->hi - r->lo, 255);
+    /* b * span / 255 rounded to nearest (span < 2^23: 32 bits suffice) */
+    return (int32_t)((uint32_t)r->lo + ((uint32_t)b * span_of(r) + 127u) / 255u);
 }
 
 int32_t xgo_servo_speed_byte_to_mdeg_s(uint8_t b)

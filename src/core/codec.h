@@ -51,6 +51,10 @@ extern "C" {
  *           (error < 1 mdeg or 1 um; makes encode(decode(b)) == b).
  * No dead band here (0x7F and 0x80 decode to different values): that is
  * xgo_signed_byte_to_value. */
+/* Every range mapped here spans less than this many units (checked: an
+ * assertion; the profiles' ranges by test_profile). */
+#define XGO_RANGE_SPAN_LIMIT (1u << 23)
+
 uint8_t xgo_range_to_byte(const xgo_range_t *r, int32_t v);
 int32_t xgo_byte_to_range(const xgo_range_t *r, uint8_t b);
 

@@ -102,6 +102,35 @@ int32_t xgo_muldiv(int32_t a, int32_t b, int32_t c)
     return sat_div((int64_t)a * b, c);
 }
 
+/* Restoring division over the bits of cap: if the true quotient has more
+ * bits than cap, every bit comes out set, which is above cap too. */
+uint32_t xgo_udiv64_cap(uint64_t n, uint64_t d, uint32_t cap)
+{
+    unsigned bit = xgo_bit_length(cap);
+    uint32_t q = 0;
+    if (d == 0u) {
+        return cap;
+    }
+#if XGO_CORE_DIV64_NATIVE
+    if (d >> (63u - bit) == 0u) { /* one instruction on a 64-bit host */
+        const uint64_t full = n / d;
+        return full < cap ? (uint32_t)full : cap;
+    }
+#endif
+    while (d >> (63u - bit) != 0u) { /* d << bit must fit: keep the top bits */
+        d >>= 1;
+        n >>= 1;
+    }
+    while (bit-- > 0u) {
+        const uint64_t t = d << bit;
+        if (n >= t) {
+            n -= t;
+            q |= 1u << bit;
+        }
+    }
+    return q < cap ? q : cap;
+}
+
 /* ------------------------------------------------------------ square root */
 
 /* Leading zero bits of v (32 for 0). GCC and Clang have a builtin (one
@@ -462,12 +491,50 @@ static const int64_t cordic_atan_tab[CORDIC_ITERS + 1] = {
  * CORDIC residual y/x. Restoring division, one quotient bit per step in
  * 32 bits (the remainder stays below d < 2^31, so doubling it cannot
  * overflow); the quotient is below 2^25, so the first 7 of its 32 bits are
- * zero and n starts pre-shifted by 7. Cores without a divider (Cortex-M0)
- * would otherwise call a 64-bit division routine here; with one, the
- * division itself is cheaper (same result). */
+ * zero and n starts pre-shifted by 7: on a core without a divider
+ * (Cortex-M0). With a 32-bit divider, two 16-bit digit steps (div_shifted);
+ * on a 64-bit host one instruction. All exact: the same result, and no
+ * libgcc 64-bit division (none may run in a tick, docs/mcu.md). */
+#if !XGO_CORE_DIV64_NATIVE && !XGO_CORE_NARROW_CPU
+/* floor(n * 2^32 / d) for n < d < 2^31, and its remainder, on a core that
+ * divides 32-bit numbers in hardware but not 64-bit ones (Cortex-M3/M4):
+ * long division in two 16-bit digits (Hacker's Delight's divlu, with a zero
+ * low word), two hardware divisions instead of a libgcc call. */
+static uint32_t div_shifted(uint32_t n, uint32_t d, uint32_t *rem)
+{
+    const unsigned s = clz32(d); /* >= 1: normalise the divisor */
+    const uint32_t v = d << s, vn1 = v >> 16, vn0 = v & 0xFFFFu;
+    const uint32_t u1 = n << s; /* < v */
+    uint32_t q1 = u1 / vn1, rhat = u1 - q1 * vn1;
+    uint32_t un21, q0;
+    /* each digit estimate is at most 2 too large: correct it */
+    while (q1 > 0xFFFFu || q1 * vn0 > (rhat << 16)) {
+        --q1;
+        rhat += vn1;
+        if (rhat > 0xFFFFu) {
+            break;
+        }
+    }
+    un21 = (u1 << 16) - q1 * v; /* modulo 2^32: the true value is < v */
+    q0 = un21 / vn1;
+    rhat = un21 - q0 * vn1;
+    while (q0 > 0xFFFFu || q0 * vn0 > (rhat << 16)) {
+        --q0;
+        rhat += vn1;
+        if (rhat > 0xFFFFu) {
+            break;
+        }
+    }
+    *rem = ((un21 << 16) - q0 * v) >> s;
+    return (q1 << 16) | q0;
+}
+#endif
+
 static uint32_t frac_q32(uint32_t n, uint32_t d)
 {
-#if XGO_CORE_NARROW_CPU
+#if XGO_CORE_DIV64_NATIVE
+    return (uint32_t)((((uint64_t)n << 32) + (d >> 1)) / d);
+#elif XGO_CORE_NARROW_CPU
     uint32_t r = n << 7; /* < d */
     uint32_t q = 0;
     int i;
@@ -485,7 +552,9 @@ static uint32_t frac_q32(uint32_t n, uint32_t d)
     }
     return q;
 #else
-    return (uint32_t)((((uint64_t)n << 32) + (d >> 1)) / d);
+    uint32_t r;
+    const uint32_t q = div_shifted(n, d, &r);
+    return r >= d - (d >> 1) ? q + 1u : q;
 #endif
 }
 

@@ -81,6 +81,13 @@ int32_t xgo_div_q(int32_t a, int32_t b, unsigned q);
  * zero), saturated; c == 0 handled as in xgo_div_q. Max error 0.5 LSB. */
 int32_t xgo_muldiv(int32_t a, int32_t b, int32_t c);
 
+/* min(floor(n / d), cap); d == 0 gives cap. Without a 64-bit division (a
+ * libgcc call on 32-bit cores, and never run in a tick: docs/mcu.md): a
+ * restoring division over the bits of cap, so it costs more the larger cap
+ * is. Exact while d < 2^(63 - bit length of cap); beyond, both are halved
+ * until it is (the quotient then may be one lower). */
+uint32_t xgo_udiv64_cap(uint64_t n, uint64_t d, uint32_t cap);
+
 /* Q16.16 conveniences. */
 #define xgo_q16_mul(a, b) xgo_mul_q((a), (b), 16u)
 #define xgo_q16_div(a, b) xgo_div_q((a), (b), 16u)

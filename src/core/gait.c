@@ -346,7 +346,8 @@ static void limit_speed(xgo_gait_t *g, gait_tick_t *x)
         rate_fit = fitted_rate(g, t, x->target, yaw_q24(x->target[2]), x->hx,
                                half_stride_y(x->target[2]), 0u);
         if (rate_fit > t->rate_max) {
-            g->cache_lambda_q16 = (int32_t)(((uint64_t)t->rate_max << 16) / rate_fit);
+            g->cache_lambda_q16 =
+                (int32_t)xgo_udiv64_cap((uint64_t)t->rate_max << 16, rate_fit, 65536u);
         }
     }
     if (g->cache_lambda_q16 < 65536) {
@@ -463,10 +464,9 @@ static uint32_t transient_rate(const xgo_gait_t *g, gait_tick_t *x, uint32_t rat
             travel = (uint64_t)abs_u(fm[c]) * remaining;
             room = (uint64_t)(TICKS_PER_S * (uint32_t)d) * rate;
             if (travel > room) {
-                rate = (uint32_t)(travel / (TICKS_PER_S * (uint32_t)d)) + 1u;
-                if (rate > t->rate_max) {
-                    rate = t->rate_max;
-                }
+                /* the quotient only matters up to rate_max */
+                rate = xgo_udiv64_cap(travel, TICKS_PER_S * (uint32_t)d, t->rate_max);
+                rate = rate < t->rate_max ? rate + 1u : t->rate_max;
             }
         }
     }

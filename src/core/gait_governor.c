@@ -15,6 +15,8 @@
  */
 #include "gait_internal.h"
 
+#include "fixed.h"
+
 /* End-of-stance bounds for one foot component: a foot at offset off (um)
  * from its stance point, moving at ground speed s (um/s) for r more phase
  * at the capped cadence, ends at off - s * r / k with k = TICKS_PER_S * rate_max.
@@ -31,14 +33,13 @@ static void end_bounds(int32_t off, int32_t reach, int64_t k, int64_t *lo, int64
 /* Largest lambda (Q16, 0..65536) for which a + lambda * b keeps s * r in
  * [lo, hi]. When a itself is outside (rounding, or the arc's third-order
  * terms), only steps that do not make it worse are allowed (and *outside is
- * set). One 64-bit division, only when the full step does not fit. */
+ * set). One division, only when the full step does not fit. */
 static int32_t segment_limit(int32_t a, int32_t b, uint32_t r, int64_t lo, int64_t hi, int *outside)
 {
     int64_t ar = (int64_t)a * r;
     int64_t er = (int64_t)(a + b) * r;
     int64_t room;
     int64_t span;
-    int64_t l;
     if (ar > hi || ar < lo) {
         *outside = 1;
         return (ar > hi ? er <= ar : er >= ar) ? 65536 : 0;
@@ -51,8 +52,7 @@ static int32_t segment_limit(int32_t a, int32_t b, uint32_t r, int64_t lo, int64
     if (span <= 0) {
         return 0;
     }
-    l = room / span;
-    return l > 65536 ? 65536 : (int32_t)l;
+    return (int32_t)xgo_udiv64_cap((uint64_t)room, (uint64_t)span, 65536u); /* room >= 0 */
 }
 
 /* Largest step lambda (Q16) from base towards prop that every stance foot

@@ -29,8 +29,11 @@ static int32_t abs32(int32_t v)
 static void advance_periodic(xgo_motion_t *m, unsigned axis, uint8_t period_byte)
 {
     const uint32_t ticks = (uint32_t)xgo_period_byte_to_ms(period_byte) * XGO_TICK_HZ / 1000u;
-    /* One turn of phase per period: 2^32 / ticks per tick. */
-    m->periodic_phase[axis] += (xgo_bam_t)(((uint64_t)1 << 32) / (ticks == 0 ? 1u : ticks));
+    const uint32_t t = ticks < 2u ? 2u : ticks; /* 750..4000 ticks: never below 2 */
+    /* One turn of phase per period: floor(2^32 / t) per tick, in 32 bits:
+     * (2^32 - 1) / t, plus one when t divides 2^32 (a power of two). */
+    const uint32_t step = 0xFFFFFFFFu / t + ((t & (t - 1u)) == 0u ? 1u : 0u);
+    m->periodic_phase[axis] += step;
 }
 
 /* amplitude * sin(phase), amplitude in the caller's unit */

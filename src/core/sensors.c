@@ -89,58 +89,44 @@ void xgo_imu_reset_yaw(xgo_imu_t *imu)
 }
 
 /* Wrap an angle in mdeg into [-180000, 180000). */
+/* a wrapped into [-180000, 180000): the sum of a few int32 angles, clamped to
+ * int32 first (angles beyond +-2147483 degrees are no angles a tick makes),
+ * so no 64-bit remainder is needed. */
 static int32_t wrap_mdeg(int64_t a)
 {
-    if (a >= -900000 && a < 900000) {
-        /* the usual case (an angle plus a small offset): in 32 bits
-         * instead of a 64-bit remainder */
-        return xgo_wrap_mdeg((int32_t)a);
-    }
-    a %= 360000;
-    if (a >= 180000) {
-        a -= 360000;
-    } else if (a < -180000) {
-        a += 360000;
-    }
-    return (int32_t)a;
+    return xgo_wrap_mdeg(xgo_sat32(a));
 }
 
 /* yaw_acc wraps at one turn: 360 degrees in mdeg * XGO_TICK_HZ. */
 #define YAW_TURN ((int64_t)360000 * (int64_t)XGO_TICK_HZ)
+#if XGO_TICK_HZ > 2900
+#error "xgo_imu_tick keeps two turns of yaw_acc (mdeg * XGO_TICK_HZ) in an int32"
+#endif
 
 void xgo_imu_tick(xgo_imu_t *imu, int32_t body_roll_mdeg, int32_t body_pitch_mdeg,
                   int32_t body_yaw_mdeg, int32_t yaw_rate_mdeg_s)
 {
-    const int64_t turn = YAW_TURN;
-    const uint32_t tick_hz = XGO_TICK_HZ;
-    int64_t acc;
     /* yaw_acc counts mdeg * XGO_TICK_HZ, so adding the rate each tick
-     * integrates exactly; it wraps at one turn and stays well inside int32
-     * for rates up to thousands of degrees per second. */
-    if (turn < ((int64_t)1 << 29) && yaw_rate_mdeg_s < turn && yaw_rate_mdeg_s > -turn &&
-        imu->yaw_acc < turn && imu->yaw_acc > -turn) {
-        /* 32-bit (tick rates up to 1491 Hz, rates below a turn per tick, the
-         * accumulator as the previous tick left it): |acc| < 2 turn < 2^30,
-         * and one subtraction does what % does (truncating, sign of acc). */
-        int32_t t32 = (int32_t)turn;
-        int32_t a32 = imu->yaw_acc + yaw_rate_mdeg_s;
-        if (a32 >= t32) {
-            a32 -= t32;
-        } else if (a32 <= -t32) {
-            a32 += t32;
-        }
-        imu->yaw_acc = a32;
-        acc = a32 / (int32_t)tick_hz; /* |a32| < 2^29 */
-    } else {
-        acc = (int64_t)imu->yaw_acc + yaw_rate_mdeg_s;
-        acc %= turn;
-        imu->yaw_acc = (int32_t)acc;
-        acc /= (int64_t)tick_hz;
+     * integrates exactly; it wraps at one turn. All in 32 bits: |yaw_acc| <
+     * turn, so |a32| < 2 turn < 2^30, and one subtraction does what % does
+     * (truncating, sign of acc). A rate of a turn per tick or more (180,000
+     * deg/s at 500 Hz) is clamped just below it. */
+    const int32_t t32 = (int32_t)YAW_TURN;
+    const int32_t rate = yaw_rate_mdeg_s >= t32 ? t32 - 1
+                                                : (yaw_rate_mdeg_s <= -t32 ? 1 - t32 : yaw_rate_mdeg_s);
+    int32_t a32 = imu->yaw_acc + rate;
+    int32_t acc;
+    if (a32 >= t32) {
+        a32 -= t32;
+    } else if (a32 <= -t32) {
+        a32 += t32;
     }
+    imu->yaw_acc = a32;
+    acc = a32 / (int32_t)XGO_TICK_HZ;
     push_tick(imu);
     imu->roll_mdeg = wrap_mdeg((int64_t)body_roll_mdeg + imu->ground_roll_mdeg +
                                (imu->push_q10[0] >> 10));
     imu->pitch_mdeg = wrap_mdeg((int64_t)body_pitch_mdeg + imu->ground_pitch_mdeg +
                                 (imu->push_q10[1] >> 10));
-    imu->yaw_mdeg = wrap_mdeg(acc + body_yaw_mdeg);
+    imu->yaw_mdeg = wrap_mdeg((int64_t)acc + body_yaw_mdeg);
 }

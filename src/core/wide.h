@@ -36,6 +36,16 @@
 #define XGO_CORE_NARROW_CPU 0
 #endif
 
+/* XGO_CORE_DIV64_NATIVE: the core has a 64-bit divide instruction (64-bit
+ * hosts). Elsewhere a 64-bit division is a libgcc call (hundreds of cycles
+ * on a Cortex-M3, more on an M0) and none may run in a tick (docs/mcu.md). */
+#if !XGO_CORE_NARROW_CPU && (defined(__x86_64__) || defined(__aarch64__) || \
+                             (defined(__SIZEOF_POINTER__) && __SIZEOF_POINTER__ == 8))
+#define XGO_CORE_DIV64_NATIVE 1
+#else
+#define XGO_CORE_DIV64_NATIVE 0
+#endif
+
 #if defined(XGO_WIDE_MUL_SPLIT) || defined(__ARM_ARCH_6M__) || defined(__ARM_ARCH_8M_BASE__)
 
 /* Unsigned 32 x 32 -> 64 from 16-bit halves. */
