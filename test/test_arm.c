@@ -232,7 +232,7 @@ static void test_arm_xz_reaches_the_point(void)
                                         (arm.claw_um.z - arm.shoulder_um.z) / 1000.0 - pts[i][1]));
         TEST_ASSERT_EQUAL_UINT8(0, arm.out_of_reach);
     }
-    TEST_ASSERT_EQUAL_UINT32(0, counter(XGO_DIAG_ARM_CLAMPED));
+    TEST_ASSERT_EQUAL_UINT32(0, counter(XGO_DIAG_REACH_CLAMPED));
 }
 
 static void test_arm_polar_reaches_the_point(void)
@@ -303,12 +303,20 @@ static void test_out_of_reach_is_clamped_and_counted(void)
     xgo_test_write1(&board, 0x73, 255, 0); /* x 155, z 155: 219 mm away, the arm reaches 120 */
     xgo_test_write1(&board, 0x74, 255, 0);
     xgo_test_ticks(&board, XGO_TICK_HZ);
-    TEST_ASSERT_EQUAL_UINT32(1, counter(XGO_DIAG_ARM_CLAMPED));
+    /* counted every tick the arm holds a clamped point (reach_clamped) */
+    TEST_ASSERT_EQUAL_UINT32(XGO_TICK_HZ, counter(XGO_DIAG_REACH_CLAMPED));
     (void)xgo_board_arm(&board, &arm);
     TEST_ASSERT_EQUAL_UINT8(1, arm.out_of_reach);
     TEST_ASSERT_TRUE(arm.joints_mdeg[XGO_ARM_SHOULDER] <= 90000);
-    xgo_test_ticks(&board, XGO_TICK_HZ); /* counted once per command, not per tick */
-    TEST_ASSERT_EQUAL_UINT32(1, counter(XGO_DIAG_ARM_CLAMPED));
+    xgo_test_ticks(&board, XGO_TICK_HZ);
+    TEST_ASSERT_EQUAL_UINT32(2 * XGO_TICK_HZ, counter(XGO_DIAG_REACH_CLAMPED));
+    /* a point it reaches: the count stops */
+    xgo_test_write1(&board, 0x73, lib_byte(60, -80, 155), 0);
+    xgo_test_write1(&board, 0x74, lib_byte(-60, -95, 155), 0);
+    xgo_test_ticks(&board, XGO_TICK_HZ);
+    (void)xgo_board_arm(&board, &arm);
+    TEST_ASSERT_EQUAL_UINT8(0, arm.out_of_reach);
+    TEST_ASSERT_EQUAL_UINT32(2 * XGO_TICK_HZ, counter(XGO_DIAG_REACH_CLAMPED));
 }
 
 /* 0x72 = 1: the claw stays where it was in the machine frame while the body

@@ -331,6 +331,11 @@ static void test_trotting_at_the_pitch_extreme_keeps_the_feet_down(void)
     }
     TEST_ASSERT_EQUAL_UINT(0, missed);
     TEST_ASSERT_EQUAL_UINT32(before + 3 * XGO_TICK_HZ, xgo_board_clamped_pose_ticks(&board));
+    {   /* the same ticks in the diagnostic block (a Mini has no arm to add) */
+        uint32_t c[XGO_DIAG_COUNT];
+        xgo_board_counters(&board, c);
+        TEST_ASSERT_EQUAL_UINT32(xgo_board_clamped_pose_ticks(&board), c[XGO_DIAG_REACH_CLAMPED]);
+    }
     xgo_board_imu_mdeg(&board, rpy);
     TEST_ASSERT_TRUE(rpy[1] > -22000 + 1000); /* not the command: what the legs hold */
     TEST_ASSERT_EQUAL_INT32(board.motion.pose.pitch_mdeg, rpy[1]);

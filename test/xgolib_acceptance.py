@@ -445,13 +445,19 @@ def check_arm_points(call, dog, emu):
         worst_board, worst_read = max(worst_board, eb), max(worst_read, er)
     state = emu.state()
     expect(not state["arm"]["out_of_reach"], "a reachable point reported out of reach")
-    expect(state["counters"]["arm_clamped"] == 0, "arm_clamped %d" % state["counters"]["arm_clamped"])
+    expect(state["counters"]["reach_clamped"] == 0, "reach_clamped %d" % state["counters"]["reach_clamped"])
     call(dog, "arm", 155, 155)  # 219 mm away: the arm reaches 120
     REAL_SLEEP(0.3)
-    # arm() sends x and z as two frames: landing in two ticks, (155, old z)
-    # is a point of its own and counts too
-    clamped = emu.state()["counters"]["arm_clamped"]
-    expect(clamped in (1, 2), "an unreachable point counted %d times" % clamped)
+    # counted every tick the arm holds the clamped point, and no longer once
+    # it is given one it reaches
+    clamped = emu.state()["counters"]["reach_clamped"]
+    expect(clamped > 0, "an unreachable point was not counted")
+    call(dog, "arm", cases[0][1][0], cases[0][1][1])
+    REAL_SLEEP(0.3)
+    settled = emu.state()["counters"]["reach_clamped"]
+    REAL_SLEEP(0.2)
+    expect(emu.state()["counters"]["reach_clamped"] == settled,
+           "reach_clamped still counting at a reachable point")
     return "%d points: board within %.2f mm, read_motor within %.2f mm; out of reach counted" % (
         len(cases), worst_board, worst_read)
 

@@ -206,7 +206,8 @@ uint8_t xgo_board_battery_pct(const xgo_board_t *b);
 void xgo_board_world_pose(const xgo_board_t *b, xgo_world_pose_t *out);
 /* Whole-unit ticks whose body pose is not the one the registers ask for,
  * because the legs could not hold that (docs/motion.md, "Poses the legs
- * cannot hold"). Not in the diagnostic block: its 15 slots are taken. */
+ * cannot hold"). The diagnostic counter reach_clamped counts these ticks
+ * and those where the Mini2's arm holds a clamped point. */
 uint32_t xgo_board_clamped_pose_ticks(const xgo_board_t *b);
 
 /* The gait generator (whole-unit mode): where it puts the feet, before the

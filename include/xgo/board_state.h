@@ -214,7 +214,6 @@ typedef struct xgo_arm_s {
     int32_t point_um[2];                      /* commanded claw point x, z (arm frame) */
     uint8_t follow_point;  /* the joints serve point_um (else direct servo commands) */
     uint8_t out_of_reach;  /* the point now served had to be projected */
-    uint32_t clamped;      /* commands out of reach (diagnostic arm_clamped) */
 } xgo_arm_t;
 
 /* The motion core (src/core/motion.h): registers in, twelve joints out. */
@@ -256,6 +255,8 @@ typedef struct xgo_motion_s {
     uint8_t stroke_walks;     /* the command walks (stroke is its) */
     uint8_t stroke_on;        /* stroke applies (walking, or still stopping) */
     uint32_t clamped_pose_ticks; /* whole-unit ticks whose pose is not the one asked (reach.h) */
+    uint32_t reach_clamped_ticks; /* ticks with the body pose or the arm's point out of reach
+                                     (diagnostic reach_clamped) */
     xgo_vec3_t leg_feet_um[XGO_LEG_COUNT]; /* leg mode: the feet asked for now (leg frames,
                                               moving toward the registers' at a bounded speed) */
     uint16_t servo_written;   /* servo mode: joints written since entering it */

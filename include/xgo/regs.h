@@ -198,7 +198,7 @@ enum xgo_reg_addr_e {
     X(TX_OVERFLOW, tx_overflow, tx_overflows)                                          \
     X(HANGUP_DISCARDS, hangup_discards, parser.stats.hangup_discards)                  \
     X(FRAMING_ERRORS, framing_errors, framing_errors)                                  \
-    X(ARM_CLAMPED, arm_clamped, motion.arm.clamped)
+    X(REACH_CLAMPED, reach_clamped, motion.reach_clamped_ticks)
 
 /* XGO_DIAG_FRAMES_OK == 0, ... */
 typedef enum xgo_diag_e {

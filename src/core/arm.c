@@ -226,9 +226,8 @@ void xgo_arm_reset(xgo_arm_t *a)
 }
 
 /* Host writes: the claw, a point (x/z or polar), or the arm servos
- * directly; servo writes in the same tick as a point win (sent later).
- * Returns 1 when a new point was commanded. */
-static int take_arm_writes(xgo_arm_t *a, xgo_regs_t *r)
+ * directly; servo writes in the same tick as a point win (sent later). */
+static void take_arm_writes(xgo_arm_t *a, xgo_regs_t *r)
 {
     const xgo_arm_geometry_t *g = a->geo;
     int cart, polar, servo;
@@ -265,7 +264,6 @@ static int take_arm_writes(xgo_arm_t *a, xgo_regs_t *r)
         a->follow_point = 0;
         a->out_of_reach = 0;
     }
-    return (cart | polar) && !servo;
 }
 
 /* The commanded point in today's arm frame: itself, or (hold mode) the
@@ -307,18 +305,14 @@ static void slew(xgo_arm_t *a, const xgo_regs_t *r)
 void xgo_arm_tick(xgo_arm_t *a, xgo_regs_t *r, const xgo_body_pose_t *pose,
                   const xgo_body_pose_t *stand)
 {
-    int fresh;
     if (a->geo == NULL) {
         return;
     }
-    fresh = take_arm_writes(a, r);
+    take_arm_writes(a, r);
     if (a->follow_point) {
         int32_t x, z;
         served_point(a, xgo_regs_get(r, XGO_REG_ARM_MODE) == 1, pose, stand, &x, &z);
         a->out_of_reach = (uint8_t)(xgo_arm_ik(a->geo, x, z, a->target_mdeg) != XGO_ARM_REACHED);
-        if (fresh && a->out_of_reach) {
-            a->clamped++;
-        }
     }
     slew(a, r);
 }

@@ -527,6 +527,7 @@ static void enter_mode(xgo_motion_t *m, uint8_t was)
 
 void xgo_motion_tick(xgo_motion_t *m, xgo_regs_t *r)
 {
+    const uint32_t clamped_before = m->clamped_pose_ticks;
     int32_t q[XGO_SERVO_COUNT];
     int32_t step = XGO_JOINT_STEP_MAX_MDEG;
     int32_t yaw_rate = 0;
@@ -564,6 +565,9 @@ void xgo_motion_tick(xgo_motion_t *m, xgo_regs_t *r)
     xgo_imu_tick(&m->imu, m->pose.roll_mdeg, m->pose.pitch_mdeg, m->pose.yaw_mdeg, yaw_rate);
     inertial_tick(m);
     xgo_arm_tick(&m->arm, r, &m->pose, &m->stand);
+    if (m->clamped_pose_ticks != clamped_before || m->arm.out_of_reach) {
+        m->reach_clamped_ticks++; /* the board holds the nearest pose it can, not the one asked */
+    }
     xgo_battery_tick(&m->battery, busy);
     if (m->mode == XGO_MODE_ACTION && m->action_id == 0) {
         m->mode = m->group_mode;
