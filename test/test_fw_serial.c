@@ -113,8 +113,8 @@ static void fw_start(void)
     fw_sync();
 }
 
-/* SIGTERM: serve.sh stops QEMU, removes the link, exits 0. */
-static void fw_stop_cleanly(void)
+/* sig (SIGTERM, SIGINT): serve.sh stops QEMU, removes the link, exits 0. */
+static void fw_stop_with(int sig)
 {
     struct stat st;
     if (g_port >= 0) {
@@ -124,12 +124,17 @@ static void fw_stop_cleanly(void)
     if (g_ready_port != NULL) {
         return; /* not ours to stop */
     }
-    TEST_ASSERT_EQUAL_INT(0, kill(g_fw.pid, SIGTERM));
-    TEST_ASSERT_TRUE_MESSAGE(xgo_test_emu_wait(&g_fw, EXIT_TIMEOUT_MS), "serve.sh ignored SIGTERM");
+    TEST_ASSERT_EQUAL_INT(0, kill(g_fw.pid, sig));
+    TEST_ASSERT_TRUE_MESSAGE(xgo_test_emu_wait(&g_fw, EXIT_TIMEOUT_MS), "serve.sh ignored the signal");
     TEST_ASSERT_TRUE(WIFEXITED(g_fw.status));
     TEST_ASSERT_EQUAL_INT(0, WEXITSTATUS(g_fw.status));
     TEST_ASSERT_TRUE_MESSAGE(lstat(g_link, &st) != 0 && errno == ENOENT,
                              "the link was not removed at exit");
+}
+
+static void fw_stop_cleanly(void)
+{
+    fw_stop_with(SIGTERM);
 }
 
 /* ---- the host ------------------------------------------------------------ */
@@ -283,7 +288,7 @@ static void test_renamed_board_keeps_its_name_across_a_restart(void)
     fw_start();
     write_regs(0x13, "Rex", 3);
     xgo_test_sleep_ms(600); /* saved once it settled (200 ms) */
-    fw_stop_cleanly();
+    fw_stop_with(SIGINT); /* Ctrl-C */
     fw_start();
     read_regs(0x13, sizeof name, name);
     TEST_ASSERT_EQUAL_MEMORY("Rex\0\0\0\0\0\0\0", name, sizeof name);

@@ -10,14 +10,13 @@
  *   TIMER0 at 1 MHz, compare 0 every 2000 us: one control period each. The
  *     handler moves the compare on by whole periods and catches up if it
  *     ran late (the COMPARE->CLEAR short would lose the time spent late).
- *   Non-volatile data: nv_file.c (QEMU has no NVMC model).
- *   Servo outputs: no servo bus here; the last positions are kept in the
- *     port state for a debugger to look at.
+ *   Non-volatile data and servo outputs: qemu_board.c (QEMU models no NVMC;
+ *     no servo bus here).
  */
 #include <stdint.h>
 
 #include "cortex_m.h"
-#include "nv_file.h"
+#include "qemu_board.h"
 
 #define UART0_TASKS_STARTRX XGO_CM_REG(0x40002000u)
 #define UART0_TASKS_STARTTX XGO_CM_REG(0x40002008u)
@@ -57,9 +56,7 @@
 struct xgo_port_s {
     volatile uint32_t ms;
     uint8_t tx_busy; /* a byte is in flight: room once TXDRDY */
-    xgo_nv_file_t nv;
-    int32_t servo_raw_mdeg[XGO_SERVO_COUNT];
-    uint16_t servo_limp;
+    xgo_qemu_board_t board; /* NV in a host file, servo outputs (qemu_board.c) */
 };
 
 static struct xgo_port_s port;
@@ -96,23 +93,9 @@ void xgo_port_rx_resume(xgo_port_t *p)
     UART0_INTENSET = UART_INT_RXDRDY;
 }
 
-int xgo_port_nv_load(xgo_port_t *p, xgo_board_nv_t *nv)
+xgo_qemu_board_t *xgo_port_qemu_board(xgo_port_t *p)
 {
-    return xgo_nv_file_load(&p->nv, nv);
-}
-
-int xgo_port_nv_save(xgo_port_t *p, const xgo_board_nv_t *nv)
-{
-    return xgo_nv_file_save(&p->nv, nv);
-}
-
-void xgo_port_servo_write(xgo_port_t *p, const int32_t raw_mdeg[XGO_SERVO_COUNT], uint16_t limp)
-{
-    unsigned i;
-    for (i = 0; i < XGO_SERVO_COUNT; i++) {
-        p->servo_raw_mdeg[i] = raw_mdeg[i];
-    }
-    p->servo_limp = limp;
+    return &p->board;
 }
 
 /* ---- interrupts --------------------------------------------------------- */
@@ -165,7 +148,7 @@ __attribute__((section(".isr_vector"), used)) static const struct {
 
 int main(void)
 {
-    xgo_nv_file_init(&port.nv);
+    xgo_nv_file_init(&port.board.nv);
     xgo_device_init(&device, &port, NULL);
     UART0_ENABLE = UART_ENABLE_ON; /* first: the UART ignores the rest until then */
     UART0_PSELTXD = PIN_TX;

@@ -8,14 +8,13 @@
  *     TX from the main loop while TXE is set; when it is not, TXEIE wakes
  *     the loop once the data register is free.
  *   SysTick at 500 Hz: one control period per interrupt, plus the clock.
- *   Non-volatile data: nv_file.c (QEMU has no flash controller model).
- *   Servo outputs: no servo bus on this board; the last positions are kept
- *     in the port state for a debugger to look at.
+ *   Non-volatile data and servo outputs: qemu_board.c (QEMU models no flash
+ *     controller; no servo bus on this board).
  */
 #include <stdint.h>
 
 #include "cortex_m.h"
-#include "nv_file.h"
+#include "qemu_board.h"
 
 #define CPU_HZ 24000000u
 #define BAUD 115200u
@@ -58,9 +57,7 @@
 struct xgo_port_s {
     volatile uint32_t ms;
     uint32_t rx_overruns; /* ORE seen: a byte was lost in the USART (never expected) */
-    xgo_nv_file_t nv;
-    int32_t servo_raw_mdeg[XGO_SERVO_COUNT];
-    uint16_t servo_limp;
+    xgo_qemu_board_t board; /* NV in a host file, servo outputs (qemu_board.c) */
 };
 
 static struct xgo_port_s port;
@@ -107,23 +104,9 @@ void xgo_port_rx_resume(xgo_port_t *p)
     usart_cr1_update(USART_CR1_RXNEIE, 0);
 }
 
-int xgo_port_nv_load(xgo_port_t *p, xgo_board_nv_t *nv)
+xgo_qemu_board_t *xgo_port_qemu_board(xgo_port_t *p)
 {
-    return xgo_nv_file_load(&p->nv, nv);
-}
-
-int xgo_port_nv_save(xgo_port_t *p, const xgo_board_nv_t *nv)
-{
-    return xgo_nv_file_save(&p->nv, nv);
-}
-
-void xgo_port_servo_write(xgo_port_t *p, const int32_t raw_mdeg[XGO_SERVO_COUNT], uint16_t limp)
-{
-    unsigned i;
-    for (i = 0; i < XGO_SERVO_COUNT; i++) {
-        p->servo_raw_mdeg[i] = raw_mdeg[i];
-    }
-    p->servo_limp = limp;
+    return &p->board;
 }
 
 /* ---- interrupts --------------------------------------------------------- */
@@ -189,7 +172,7 @@ static void clock_init(void)
 int main(void)
 {
     clock_init();
-    xgo_nv_file_init(&port.nv);
+    xgo_nv_file_init(&port.board.nv);
     xgo_device_init(&device, &port, NULL);
     /* Bytes sent before this point are lost (the USART is off): hosts sync
      * with a read request they repeat until it is answered. */
