@@ -124,7 +124,7 @@ static uint32_t max_u(uint32_t a, uint32_t b)
 static uint32_t fit_rate(uint32_t speed, uint32_t h, uint32_t k_rate)
 {
     uint32_t q = (speed << 11) / h; /* speed / h in Q11 */
-    return (uint32_t)(((uint64_t)q * k_rate) >> 11);
+    return (uint32_t)(xgo_umul_wide(q, k_rate) >> 11);
 }
 
 static void publish(xgo_gait_t *g, const int32_t z_um[XGO_LEG_COUNT])
@@ -257,8 +257,8 @@ static uint32_t fitted_rate(const xgo_gait_t *g, const gait_table_t *t, const in
     rate = max_u(floor, max_u(fit_rate(max_fx, hx, t->k_rate), fit_rate(max_fy, hy, t->k_rate)));
     {
         /* |w| / turn in Q11, then like fit_rate: turn = D / rate. */
-        uint32_t q = (uint32_t)(((uint64_t)abs_u(w_q24) * K_TURN) >> 32);
-        rate = max_u(rate, (uint32_t)(((uint64_t)q * t->k_rate) >> 11));
+        uint32_t q = (uint32_t)(xgo_umul_wide(abs_u(w_q24), K_TURN) >> 32);
+        rate = max_u(rate, (uint32_t)(xgo_umul_wide(q, t->k_rate) >> 11));
     }
     if (w_q24 == 0 || rate > t->rate_max || rate < (1u << 16)) {
         return rate; /* no yaw, hopeless, or too slow to matter */
@@ -276,7 +276,7 @@ static uint32_t fitted_rate(const xgo_gait_t *g, const gait_table_t *t, const in
     /* extents are < 2^19 um: Q12 ratios fit 32 bits */
     ratio = max_u((ext_x << 12) / hx, (ext_y << 12) / hy);
     if (ratio > (1u << 12)) {
-        uint64_t r2 = ((uint64_t)rate * ratio) >> 12;
+        uint64_t r2 = xgo_umul_wide(rate, ratio) >> 12;
         rate = r2 > 0xFFFFFFFFu ? 0xFFFFFFFFu : (uint32_t)r2;
     }
     return rate;
@@ -461,8 +461,8 @@ static uint32_t transient_rate(const xgo_gait_t *g, gait_tick_t *x, uint32_t rat
                 rate = t->rate_max;
                 continue;
             }
-            travel = (uint64_t)abs_u(fm[c]) * remaining;
-            room = (uint64_t)(TICKS_PER_S * (uint32_t)d) * rate;
+            travel = xgo_umul_wide(abs_u(fm[c]), remaining);
+            room = xgo_umul_wide(TICKS_PER_S * (uint32_t)d, rate);
             if (travel > room) {
                 /* the quotient only matters up to rate_max */
                 rate = xgo_udiv64_cap(travel, TICKS_PER_S * (uint32_t)d, t->rate_max);
@@ -666,7 +666,7 @@ static void swing_step(xgo_gait_t *g, gait_tick_t *x, int leg)
     const int32_t one = 1 << 26;
     int32_t td[2], f0[2], f1[2];
     uint32_t theta = g->phase - x->t->lift[leg];
-    uint32_t psi = (uint32_t)(((uint64_t)theta * x->t->inv_swing_q16) >> 16);
+    uint32_t psi = (uint32_t)(xgo_umul_wide(theta, x->t->inv_swing_q16) >> 16);
     const int32_t u = (int32_t)(psi >> 6);
     const int32_t u2 = mul_q(u, u, 26u), u3 = mul_q(u2, u, 26u);
     const int32_t h = mul_q(u3, 10 * one - 15 * u + 6 * u2, 26u);

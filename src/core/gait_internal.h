@@ -11,6 +11,7 @@
 
 #include "xgo/config.h" /* XGO_TICK_HZ */
 #include "gait.h"
+#include "wide.h"
 
 #define TICKS_PER_S XGO_TICK_HZ
 
@@ -57,13 +58,25 @@ typedef struct gait_tick_s {
     int32_t z_um[XGO_LEG_COUNT];  /* swing heights this tick */
 } gait_tick_t;
 
-/* (a * b) / 2^q rounded, 1 <= q <= 31: xgo_mul_q without the saturation,
- * inlined (it is the hot spot). Every use has |a * b| < 2^56 and a result
- * well inside int32 by the clamps on the command (twice the vendor ranges),
- * the stance (+-200 mm) and the reach box. */
+/* (a * b) / 2^q rounded, 1 <= q <= 31: xgo_mul_q without the saturation
+ * (it is the hot spot: about 90 a trotting tick). Every use has
+ * |a * b| < 2^56 and a result well inside int32 by the clamps on the
+ * command (twice the vendor ranges), the stance (+-200 mm) and the reach
+ * box. On a Cortex-M0 the product is wide.h's four 16-bit MULS and the
+ * rounding shift works on its two 32-bit words: libgcc's 64 x 64 multiply
+ * and 64-bit shifts by a variable q (the compiler does not inline this at
+ * -Os) cost about three times as much. Both forms give the same low 32 bits
+ * of the shifted sum, so the same result. */
 static inline int32_t mul_q(int32_t a, int32_t b, unsigned q)
 {
+#if XGO_CORE_NARROW_CPU
+    const uint64_t p = (uint64_t)xgo_mul_wide(a, b);
+    const uint32_t lo = (uint32_t)p + (1u << (q - 1u));
+    const uint32_t hi = (uint32_t)(p >> 32) + (lo < (uint32_t)p ? 1u : 0u);
+    return (int32_t)((lo >> q) | (hi << (32u - q)));
+#else
     return (int32_t)(((int64_t)a * b + ((int64_t)1 << (q - 1u))) >> q);
+#endif
 }
 
 static inline uint32_t abs_u(int32_t v)
@@ -90,7 +103,7 @@ static inline int32_t yaw_q24(int32_t w_mdeg_s)
  * depend on the tick rate). */
 static inline uint32_t half_time_q16(const gait_table_t *t, uint32_t r)
 {
-    return (uint32_t)(((uint64_t)r * t->k_half) >> 39);
+    return (uint32_t)(xgo_umul_wide(r, t->k_half) >> 39);
 }
 
 /* Reach box of a stance foot (um) for yaw rate w: x fixed, y widened by the
