@@ -56,45 +56,59 @@ void xgo_inertial_init(xgo_inertial_t *s)
     s->accel[2] = XGO_ACCEL_LSB_PER_G;
 }
 
+/* sin and cos of the roll and pitch, shared by the accelerometer and the
+ * gyroscope (two sincos instead of four). */
+typedef struct attitude_trig_s {
+    xgo_q30_t sr, cr, sp, cp;
+} attitude_trig_t;
+
+static void attitude_trig(const int32_t att_mdeg[3], attitude_trig_t *t)
+{
+    xgo_sincos(xgo_mdeg_to_bam(att_mdeg[0]), &t->sr, &t->cr);
+    xgo_sincos(xgo_mdeg_to_bam(att_mdeg[1]), &t->sp, &t->cp);
+}
+
 /* Specific force in the body frame, LSB * 256: the world acceleration
  * (a_q8, LSB * 256, world axes) plus 1 g up, turned by R^T. */
-static void specific_force(const int32_t a_q8[3], xgo_bam_t heading, const int32_t att_mdeg[3],
-                           int32_t f[3])
+static void specific_force(const int32_t a_q8[3], const xgo_q30_t heading_sc[2],
+                           const attitude_trig_t *t, int32_t f[3])
 {
-    xgo_q30_t sh, ch, sr, cr, sp, cp;
+    const xgo_q30_t sh = heading_sc[0], ch = heading_sc[1];
     int32_t hx, hy, hz, x1, z1;
-    xgo_sincos(heading, &sh, &ch);
-    xgo_sincos(xgo_mdeg_to_bam(att_mdeg[0]), &sr, &cr);
-    xgo_sincos(xgo_mdeg_to_bam(att_mdeg[1]), &sp, &cp);
     /* Rz(-heading): world -> the body's heading frame */
     hx = mul_q30(a_q8[0], ch) + mul_q30(a_q8[1], sh);
     hy = mul_q30(a_q8[1], ch) - mul_q30(a_q8[0], sh);
     hz = a_q8[2] + XGO_ACCEL_LSB_PER_G * 256;
     /* Ry(-pitch), then Rx(-roll) */
-    x1 = mul_q30(hx, cp) - mul_q30(hz, sp);
-    z1 = mul_q30(hx, sp) + mul_q30(hz, cp);
+    x1 = mul_q30(hx, t->cp) - mul_q30(hz, t->sp);
+    z1 = mul_q30(hx, t->sp) + mul_q30(hz, t->cp);
     f[0] = x1;
-    f[1] = mul_q30(hy, cr) + mul_q30(z1, sr);
-    f[2] = mul_q30(z1, cr) - mul_q30(hy, sr);
+    f[1] = mul_q30(hy, t->cr) + mul_q30(z1, t->sr);
+    f[2] = mul_q30(z1, t->cr) - mul_q30(hy, t->sr);
 }
 
 /* Body rates from the Euler rates (mdeg per tick), LSB * 256. */
-static void body_rates(const int32_t d_mdeg[3], const int32_t att_mdeg[3], int32_t w[3])
+static void body_rates(const int32_t d_mdeg[3], const attitude_trig_t *t, int32_t w[3])
 {
-    xgo_q30_t sr, cr, sp, cp;
-    int32_t yaw_cp;
-    xgo_sincos(xgo_mdeg_to_bam(att_mdeg[0]), &sr, &cr);
-    xgo_sincos(xgo_mdeg_to_bam(att_mdeg[1]), &sp, &cp);
-    yaw_cp = mul_q30(d_mdeg[2], cp);
-    w[0] = d_mdeg[0] - mul_q30(d_mdeg[2], sp);
-    w[1] = mul_q30(d_mdeg[1], cr) + mul_q30(yaw_cp, sr);
-    w[2] = mul_q30(yaw_cp, cr) - mul_q30(d_mdeg[1], sr);
+    const int32_t yaw_cp = mul_q30(d_mdeg[2], t->cp);
+    w[0] = d_mdeg[0] - mul_q30(d_mdeg[2], t->sp);
+    w[1] = mul_q30(d_mdeg[1], t->cr) + mul_q30(yaw_cp, t->sr);
+    w[2] = mul_q30(yaw_cp, t->cr) - mul_q30(d_mdeg[1], t->sr);
 }
 
 void xgo_inertial_tick(xgo_inertial_t *s, const int64_t body_q8[3], xgo_bam_t heading,
                        const int32_t att_mdeg[3])
 {
+    xgo_q30_t sc[2];
+    xgo_sincos(heading, &sc[0], &sc[1]);
+    xgo_inertial_tick_sc(s, body_q8, sc, att_mdeg);
+}
+
+void xgo_inertial_tick_sc(xgo_inertial_t *s, const int64_t body_q8[3], const xgo_q30_t heading_sc[2],
+                          const int32_t att_mdeg[3])
+{
     int32_t a_q8[3], f[3], d[3], w[3];
+    attitude_trig_t trig;
     unsigned i;
     if (s->history == 0) {
         memcpy(s->pos_q8[0], body_q8, sizeof s->pos_q8[0]);
@@ -109,8 +123,9 @@ void xgo_inertial_tick(xgo_inertial_t *s, const int64_t body_q8[3], xgo_bam_t he
         a_q8[i] = (int32_t)((xgo_mul_wide(clamp32(d2, D2_LIMIT_Q8), ACCEL_Q16) + 32768) >> 16);
         d[i] = xgo_wrap_mdeg(att_mdeg[i] - s->att_mdeg[i]);
     }
-    specific_force(a_q8, heading, att_mdeg, f);
-    body_rates(d, att_mdeg, w);
+    attitude_trig(att_mdeg, &trig);
+    specific_force(a_q8, heading_sc, &trig, f);
+    body_rates(d, &trig, w);
     for (i = 0; i < 3; i++) {
         /* +-2^18 mdeg per tick is far beyond the sensor's range */
         w[i] = (int32_t)((xgo_mul_wide(clamp32(w[i], 1 << 18), GYRO_Q16) + 32768) >> 16);
@@ -123,7 +138,7 @@ void xgo_inertial_tick(xgo_inertial_t *s, const int64_t body_q8[3], xgo_bam_t he
 }
 
 void xgo_inertial_body_position(const xgo_odometry_t *o, const xgo_body_pose_t *pose,
-                                int64_t body_q8[3], xgo_bam_t *heading)
+                                int64_t body_q8[3], xgo_q30_t heading_sc[2])
 {
     xgo_q30_t sh, ch;
     xgo_sincos(o->yaw, &sh, &ch);
@@ -133,5 +148,10 @@ void xgo_inertial_body_position(const xgo_odometry_t *o, const xgo_body_pose_t *
     body_q8[1] = o->y_q8 + ((xgo_mul_wide(sh, pose->x_um) + xgo_mul_wide(ch, pose->y_um) +
                              (1 << 21)) >> 22);
     body_q8[2] = (int64_t)pose->z_um * 256;
-    *heading = o->yaw + xgo_mdeg_to_bam(pose->yaw_mdeg);
+    if (pose->yaw_mdeg == 0) { /* the usual case: the body faces the machine's heading */
+        heading_sc[0] = sh;
+        heading_sc[1] = ch;
+    } else {
+        xgo_sincos(o->yaw + xgo_mdeg_to_bam(pose->yaw_mdeg), &heading_sc[0], &heading_sc[1]);
+    }
 }

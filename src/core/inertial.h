@@ -53,12 +53,18 @@ void xgo_inertial_init(xgo_inertial_t *s);
  * IMU's roll, pitch, yaw. The first ticks after init see no motion. */
 void xgo_inertial_tick(xgo_inertial_t *s, const int64_t body_q8[3], xgo_bam_t heading,
                        const int32_t att_mdeg[3]);
+/* The same with the heading as its sine and cosine (Q30), as
+ * xgo_inertial_body_position gives them. */
+void xgo_inertial_tick_sc(xgo_inertial_t *s, const int64_t body_q8[3], const xgo_q30_t heading_sc[2],
+                          const int32_t att_mdeg[3]);
 
 /* Where the body centre is in the odometry's world: the machine frame's
  * position and heading plus the body pose's shift (x, y turned by the
- * heading; z the height) and yaw. */
+ * heading; z the height) and yaw; the body's heading as its sine and
+ * cosine (Q30; with no body yaw those of the machine's heading, computed
+ * once for both). */
 void xgo_inertial_body_position(const xgo_odometry_t *o, const xgo_body_pose_t *pose,
-                                int64_t body_q8[3], xgo_bam_t *heading);
+                                int64_t body_q8[3], xgo_q30_t heading_sc[2]);
 
 #ifdef __cplusplus
 }

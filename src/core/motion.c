@@ -497,9 +497,9 @@ static void inertial_tick(xgo_motion_t *m)
 {
     const int32_t att[3] = {m->imu.roll_mdeg, m->imu.pitch_mdeg, m->imu.yaw_mdeg};
     int64_t body_q8[3];
-    xgo_bam_t heading;
-    xgo_inertial_body_position(&m->odom, &m->pose, body_q8, &heading);
-    xgo_inertial_tick(&m->inertial, body_q8, heading, att);
+    xgo_q30_t heading_sc[2];
+    xgo_inertial_body_position(&m->odom, &m->pose, body_q8, heading_sc);
+    xgo_inertial_tick_sc(&m->inertial, body_q8, heading_sc, att);
 }
 
 /* Entering a mode from another: leg and servo modes start from home, and
