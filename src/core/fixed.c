@@ -176,91 +176,80 @@ unsigned xgo_bit_length(uint64_t v)
     return 32u - clz32((uint32_t)v);
 }
 
+/* round(sqrt((32 + i) * 2^25)) - 2^15, i = 0..96: the square root of a
+ * normalised 32-bit value m in [2^30, 2^32) at 96 equal steps of m (the
+ * chord between two entries is within 2 of floor(sqrt(m))). */
+static const uint16_t sqrt_tab[97] = {
+    0, 508, 1008, 1502, 1988, 2467, 2940, 3407, 3868, 4323, 4772, 5217, 5656, 6090, 6519, 6944,
+    7364, 7780, 8192, 8600, 9003, 9403, 9799, 10191, 10580, 10965, 11347, 11726, 12101, 12474,
+    12843, 13209, 13573, 13934, 14291, 14647, 14999, 15349, 15697, 16041, 16384, 16724, 17062,
+    17398, 17731, 18062, 18391, 18718, 19043, 19366, 19686, 20005, 20322, 20637, 20951, 21262,
+    21572, 21879, 22186, 22490, 22793, 23094, 23394, 23691, 23988, 24283, 24576, 24868, 25158,
+    25447, 25735, 26021, 26305, 26589, 26871, 27151, 27431, 27709, 27985, 28261, 28535, 28808,
+    29080, 29351, 29620, 29889, 30156, 30422, 30687, 30951, 31214, 31475, 31736, 31995, 32254,
+    32511, 32768,
+};
+
+/* floor(sqrt(m)) for m in [2^30, 2^32): the table's chord, then exact by
+ * stepping (at most 2 steps; y <= 65535 keeps every square in 32 bits). */
+static uint32_t isqrt_norm32(uint32_t m)
+{
+    const uint32_t i = (m >> 25) - 32u, f = (m >> 9) & 0xFFFFu;
+    const uint32_t a = sqrt_tab[i], b = sqrt_tab[i + 1u];
+    uint32_t y = 32768u + a + (((b - a) * f) >> 16); /* (b - a) < 2^9 */
+    if (y > 65535u) {
+        y = 65535u;
+    }
+    while (y * y > m) {
+        --y;
+    }
+    while (y < 65535u && (y + 1u) * (y + 1u) <= m) {
+        ++y;
+    }
+    return y;
+}
+
+/* Normalise (an even shift, so the root shifts by half), table + chord,
+ * exact by stepping: floor(floor(sqrt(x * 4^k)) / 2^k) = floor(sqrt(x)). */
 uint32_t xgo_isqrt32(uint32_t x)
 {
-    uint32_t r = 0;
-    uint32_t bit;
+    unsigned s;
     if (x == 0u) {
         return 0u;
     }
-    /* start at the highest even bit position not above x's top bit */
-    bit = 1u << ((31u - clz32(x)) & ~1u);
-    while (bit != 0u) {
-        if (x >= r + bit) {
-            x -= r + bit;
-            r = (r >> 1) + bit;
-        } else {
-            r >>= 1;
-        }
-        bit >>= 2;
-    }
-    return r;
+    s = clz32(x) & ~1u;
+    return isqrt_norm32(x << s) >> (s / 2u);
 }
 
-/* Exact floor, bit by bit. On a narrow core (wide.h): digit by digit, two
- * bits of x per bit of the root; the state after the high word is
- * (floor(sqrt(hi)), hi - root^2), which xgo_isqrt32 gives, then the low
- * word's 16 bit pairs follow. The remainder is at most twice the root, so 32
- * bits hold it for all but the last two steps (done in 64 bits): a third of
- * the all-64-bit loop's instructions on a Cortex-M0. With 64-bit registers
- * the plain 64-bit loop is shorter. */
+/* Above 2^32: normalise to [2^62, 2^64), the root of the high word (16
+ * bits), one Newton step for the low 16 bits with a 32-bit division (the
+ * remainder is below 2^49 and the divisor 2^17 times the root: both cut by
+ * 2^17 so it fits), then exact by stepping (the step lands within 2). */
 uint32_t xgo_isqrt64(uint64_t x)
 {
-#if XGO_CORE_NARROW_CPU
-    uint32_t hi = (uint32_t)(x >> 32), lo = (uint32_t)x;
-    uint32_t r, rem;
-    uint64_t rem64, trial64;
-    int i;
+    uint32_t hi = (uint32_t)(x >> 32), lo, y0, rem, y;
+    unsigned s;
+    uint64_t m;
     if (hi == 0u) {
-        return xgo_isqrt32(lo);
-    }
-    r = xgo_isqrt32(hi);
-    rem = hi - r * r; /* <= 2r < 2^17 */
-    /* bit pairs 30..4 of lo: before step j (0..13) r < 2^(16+j) and
-     * rem <= 2r, so rem * 4 + 3 and 4r + 1 stay below 2^32 */
-    for (i = 30; i >= 4; i -= 2) {
-        uint32_t trial = (r << 2) | 1u;
-        rem = (rem << 2) | ((lo >> i) & 3u);
-        r <<= 1;
-        if (rem >= trial) {
-            rem -= trial;
-            r |= 1u;
-        }
-    }
-    /* bit pairs 2 and 0: the remainder may pass 2^32 */
-    rem64 = rem;
-    for (i = 2; i >= 0; i -= 2) {
-        trial64 = ((uint64_t)r << 2) | 1u;
-        rem64 = (rem64 << 2) | ((lo >> i) & 3u);
-        r <<= 1;
-        if (rem64 >= trial64) {
-            rem64 -= trial64;
-            r |= 1u;
-        }
-    }
-    return r;
-#else
-    /* bit by bit over 64 bits */
-    uint64_t r = 0;
-    uint64_t bit;
-    unsigned top;
-    if (x <= 0xFFFFFFFFu) {
         return xgo_isqrt32((uint32_t)x);
     }
-    /* start at the highest even bit position not above x's top bit */
-    top = 63u - clz32((uint32_t)(x >> 32));
-    bit = (uint64_t)1 << (top & ~1u);
-    while (bit != 0u) {
-        if (x >= r + bit) {
-            x -= r + bit;
-            r = (r >> 1) + bit;
-        } else {
-            r >>= 1;
-        }
-        bit >>= 2;
+    s = clz32(hi) & ~1u;
+    m = x << s;
+    hi = (uint32_t)(m >> 32);
+    lo = (uint32_t)m;
+    y0 = isqrt_norm32(hi);       /* 2^15 <= y0 < 2^16 */
+    rem = hi - y0 * y0;          /* <= 2 y0 < 2^17 */
+    y = (y0 << 16) + ((rem << 15) + (lo >> 17)) / y0; /* (rem << 15) + .. < 2^32 */
+    if (y < (y0 << 16)) {
+        y = 0xFFFFFFFFu; /* the step passed 2^32: the root is just below */
     }
-    return (uint32_t)r;
-#endif
+    while (xgo_umul_wide(y, y) > m) {
+        --y;
+    }
+    while (y < 0xFFFFFFFFu && xgo_umul_wide(y + 1u, y + 1u) <= m) {
+        ++y;
+    }
+    return y >> (s / 2u);
 }
 
 xgo_q16_t xgo_q16_sqrt(xgo_q16_t x)

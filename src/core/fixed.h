@@ -21,8 +21,8 @@
  * Methods (reasons in docs/fixed-point.md): sin/cos use a 129-entry
  * quarter-wave table plus a 3rd-order angle-addition correction; atan2 is 8
  * CORDIC vectoring steps (shifts and adds only) finished by atan(t) = t -
- * t^3/3 on the small residual; asin/acos reduce to atan2; sqrt is the exact
- * bit-by-bit integer method. The maximum errors stated below were measured
+ * t^3/3 on the small residual; asin/acos reduce to atan2; sqrt is a table seed made
+ * exact by compares (one Newton step above 32 bits). The maximum errors stated below were measured
  * against libm (or exact integer arithmetic) by test/test_fixed.c over dense
  * sweeps of each whole domain plus every extreme; docs/fixed-point.md has
  * them with the cost of each function.
