@@ -360,6 +360,46 @@ static void test_angle_byte_encoding_against_reference(void)
     TEST_ASSERT_EQUAL_UINT8(255, xgo_angle_to_byte(INT32_MAX));
 }
 
+/* The vendor's range map of a joint, in double: 0 at or below lo, 255 at or
+ * above hi, floor(255 (v - lo) / (hi - lo)) between. */
+static uint8_t joint_byte_reference(const xgo_range_t *r, int32_t v)
+{
+    if (v <= r->lo) return 0;
+    if (v >= r->hi) return 255;
+    return (uint8_t)floor(255.0 * ((double)v - r->lo) / ((double)r->hi - r->lo));
+}
+
+/* 0x50..0x5B are re-encoded from their last bytes (a shortcut while a
+ * joint stays in its byte): whatever the last bytes, the result is the
+ * range map of the angles. */
+static void test_joint_registers_encode_from_any_last_byte(void)
+{
+    static const int guess_offsets[] = {0, 1, -1, 2, 128, 255};
+    const xgo_profile_t *p = xgo_profile_mini();
+    int32_t q[XGO_LEG_COUNT][XGO_JOINT_COUNT];
+    unsigned j, g, i;
+    int32_t step;
+    for (j = 0; j < XGO_JOINT_COUNT; j++) {
+        const xgo_range_t *r = &p->joint_mdeg[j];
+        for (step = -300; step <= 25800; step += 37) {
+            const int32_t v = r->lo + (int32_t)(((int64_t)(r->hi - r->lo) * step) / 25500);
+            const uint8_t want = joint_byte_reference(r, v);
+            for (g = 0; g < sizeof guess_offsets / sizeof guess_offsets[0]; g++) {
+                memset(q, 0, sizeof q);
+                q[2][j] = v;
+                for (i = 0; i < XGO_SERVO_COUNT; i++) {
+                    xgo_regs_set(&regs, (uint8_t)(XGO_REG_SERVO11 + i),
+                                 (uint8_t)(want + guess_offsets[g]));
+                }
+                xgo_regs_set_joints(&regs, p, (const int32_t(*)[XGO_JOINT_COUNT])q);
+                TEST_ASSERT_EQUAL_UINT8(want, xgo_regs_get(&regs, (uint8_t)(XGO_REG_SERVO11 + 6 + j)));
+                TEST_ASSERT_EQUAL_UINT8(joint_byte_reference(&p->joint_mdeg[0], 0),
+                                        xgo_regs_get(&regs, XGO_REG_SERVO11));
+            }
+        }
+    }
+}
+
 static void test_diag_block_is_u32_little_endian_and_read_only(void)
 {
     uint32_t counters[XGO_DIAG_COUNT];
@@ -561,6 +601,7 @@ int main(void)
     RUN_TEST(test_four_byte_attitude_reads_are_float32_le);
     RUN_TEST(test_one_byte_attitude_reads_are_the_byte_encoding);
     RUN_TEST(test_angle_byte_encoding_against_reference);
+    RUN_TEST(test_joint_registers_encode_from_any_last_byte);
     RUN_TEST(test_diag_block_is_u32_little_endian_and_read_only);
     RUN_TEST(test_table_is_consistent);
     RUN_TEST(test_vendor_registers_have_their_access_and_initial_value);

@@ -109,6 +109,36 @@ void xgo_joints_to_bytes(const xgo_profile_t *p, const int32_t q_mdeg[XGO_LEG_CO
     }
 }
 
+/* xgo_range_to_byte(r, v), given a guess: the byte b of v is the one with
+ * b * span <= 255 (v - lo) < (b + 1) * span, two multiplies to check (every
+ * product < 255 * span < 2^31). A joint moves less than one byte's worth
+ * per tick, so the last byte is almost always right, which spares the
+ * division (eight restoring steps on a Cortex-M0). */
+static uint8_t range_to_byte_near(const xgo_range_t *r, int32_t v, uint8_t guess)
+{
+    if (r->hi > r->lo && v > r->lo && v < r->hi) {
+        const uint32_t span = span_of(r);
+        const uint32_t num = 255u * ((uint32_t)v - (uint32_t)r->lo);
+        const uint32_t low = guess * span;
+        if (num >= low && num - low < span) {
+            return guess;
+        }
+    }
+    return xgo_range_to_byte(r, v);
+}
+
+void xgo_joints_update_bytes(const xgo_profile_t *p, const int32_t q_mdeg[XGO_LEG_COUNT][XGO_JOINT_COUNT],
+                             uint8_t bytes[XGO_LEG_COUNT * XGO_JOINT_COUNT])
+{
+    int leg, j;
+    for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
+        for (j = 0; j < XGO_JOINT_COUNT; ++j) {
+            uint8_t *b = &bytes[leg * XGO_JOINT_COUNT + j];
+            *b = range_to_byte_near(&p->joint_mdeg[j], q_mdeg[leg][j], *b);
+        }
+    }
+}
+
 void xgo_bytes_to_joints(const xgo_profile_t *p, const uint8_t in[XGO_LEG_COUNT * XGO_JOINT_COUNT],
                          int32_t q_mdeg[XGO_LEG_COUNT][XGO_JOINT_COUNT])
 {

@@ -475,12 +475,7 @@ static void measure_feet(xgo_motion_t *m, int contact_known)
 
 void xgo_motion_publish(const xgo_motion_t *m, xgo_regs_t *r)
 {
-    uint8_t joints[XGO_SERVO_COUNT];
-    unsigned i;
-    xgo_joints_to_bytes(m->profile, (const int32_t(*)[XGO_JOINT_COUNT])m->servos.angle_mdeg, joints);
-    for (i = 0; i < XGO_SERVO_COUNT; i++) {
-        xgo_regs_set(r, (uint8_t)(XGO_REG_SERVO11 + i), joints[i]);
-    }
+    xgo_regs_set_joints(r, m->profile, (const int32_t(*)[XGO_JOINT_COUNT])m->servos.angle_mdeg);
     xgo_regs_set(r, XGO_REG_MODE, m->mode);
     xgo_regs_set(r, XGO_REG_BATTERY, xgo_battery_percent(&m->battery));
     xgo_regs_set(r, XGO_REG_ACTION, m->action_id);

@@ -55,6 +55,10 @@ int xgo_regs_was_written_range(const xgo_regs_t *r, uint8_t first, uint8_t last)
 
 /* Board-side updates of computed registers. */
 void xgo_regs_set_attitude(xgo_regs_t *r, int32_t roll_mdeg, int32_t pitch_mdeg, int32_t yaw_mdeg);
+/* The servo registers 0x50..0x5B: the joints' angles (p's ranges), each
+ * re-encoded from its last byte (cheap while it stays in that byte). */
+void xgo_regs_set_joints(xgo_regs_t *r, const xgo_profile_t *p,
+                         const int32_t q_mdeg[XGO_LEG_COUNT][XGO_JOINT_COUNT]);
 void xgo_regs_set_diag(xgo_regs_t *r, const uint32_t counters[XGO_DIAG_COUNT]);
 /* The IMU block's acceleration (16384 LSB = 1 g) and angular rate (16.4 LSB
  * = 1 deg/s), body axes x forward, y left, z up (docs/motion.md). */

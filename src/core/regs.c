@@ -431,6 +431,12 @@ void xgo_regs_set_attitude(xgo_regs_t *r, int32_t roll_mdeg, int32_t pitch_mdeg,
     r->mem[XGO_REG_IMU_YAW] = xgo_angle_to_byte(yaw_mdeg);
 }
 
+void xgo_regs_set_joints(xgo_regs_t *r, const xgo_profile_t *p,
+                         const int32_t q_mdeg[XGO_LEG_COUNT][XGO_JOINT_COUNT])
+{
+    xgo_joints_update_bytes(p, q_mdeg, &r->mem[XGO_REG_SERVO11]);
+}
+
 /* Every counter has its slot in 0xC4..0xFF; a 16th needs a new block. */
 typedef char xgo_regs_diag_fits_[(XGO_DIAG_COUNT <= XGO_DIAG_SLOTS &&
                                   XGO_REG_DIAG + 4u * XGO_DIAG_SLOTS == 0x100u) ? 1 : -1];
