@@ -161,6 +161,21 @@ static void test_multi_byte_write_applies_all(void)
     }
 }
 
+/* The summary flag the motion core skips its per-tick look with: set by
+ * every accepted write (whatever the register), taken once; a rejected
+ * frame sets nothing. */
+static void test_any_written_is_set_by_every_write_and_taken_once(void)
+{
+    const uint8_t vx = 0x01, bad = 0x07;
+    TEST_ASSERT_FALSE(xgo_regs_take_any_written(&regs));
+    TEST_ASSERT_NOT_EQUAL(XGO_DROP_NONE, xgo_regs_write(&regs, 0x09, &bad, 1));
+    TEST_ASSERT_FALSE(xgo_regs_take_any_written(&regs));
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_write(&regs, XGO_REG_VX, &vx, 1));
+    TEST_ASSERT_TRUE(xgo_regs_take_any_written(&regs));
+    TEST_ASSERT_FALSE(xgo_regs_take_any_written(&regs));
+    TEST_ASSERT_TRUE(xgo_regs_take_written(&regs, XGO_REG_VX)); /* the register's own flag stays */
+}
+
 static void test_unmapped_addresses_read_zero_and_ignore_writes(void)
 {
     /* What the vendor library writes on other models (move to mid, teach,
@@ -588,6 +603,7 @@ int main(void)
     RUN_TEST(test_frame_with_one_bad_byte_changes_nothing);
     RUN_TEST(test_frame_touching_read_only_changes_nothing);
     RUN_TEST(test_multi_byte_write_applies_all);
+    RUN_TEST(test_any_written_is_set_by_every_write_and_taken_once);
     RUN_TEST(test_unmapped_addresses_read_zero_and_ignore_writes);
     RUN_TEST(test_write_across_a_gap_applies_the_mapped_part);
     RUN_TEST(test_firmware_window_and_gait_type_share_0x09);

@@ -49,6 +49,8 @@ typedef struct xgo_regs_s {
     uint8_t servo_speed;             /* last value written to 0x5C (on the Mini2
                                         0x5C reads the claw instead) */
     uint8_t arm;                     /* the model has the arm: XGO_REGF_ARM rows */
+    uint8_t any_written;             /* a flag of `written` was set since the last
+                                        xgo_regs_take_any_written (in padding) */
     xgo_regs_stats_t stats;
 } xgo_regs_t;
 

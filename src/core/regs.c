@@ -96,6 +96,14 @@ int xgo_reg_value_valid(const xgo_reg_desc_t *d, uint8_t v)
 static void mark_written(xgo_regs_t *r, uint8_t addr)
 {
     r->written[addr >> 3] = (uint8_t)(r->written[addr >> 3] | (1u << (addr & 7u)));
+    r->any_written = 1;
+}
+
+int xgo_regs_take_any_written(xgo_regs_t *r)
+{
+    const int was = r->any_written;
+    r->any_written = 0;
+    return was;
 }
 
 int xgo_regs_was_written(const xgo_regs_t *r, uint8_t addr)
