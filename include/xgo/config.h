@@ -36,6 +36,39 @@
  * halves and use the divider-free loops on any target, as the core does on
  * ARMv6-M (a test aid: same results, docs/mcu.md). Off by default. */
 
+/* Features a build may leave out (1 = built in, the default; 0 = compiled
+ * out). The host build keeps them all; the firmware images (ports/) build the
+ * board they stand for, a Mini on a real IMU, without them
+ * (XGO_FIRMWARE_OPTIONS in CMakeLists.txt; docs/mcu.md "Build options"):
+ *
+ * XGO_WITH_LITE, XGO_WITH_MINI2: the Lite's and the Mini2's profiles (the
+ *   Mini2's with its arm: src/core/arm.c). A model that is not built in is
+ *   served as the Mini: xgo_profile_get() returns the Mini's profile, the
+ *   board reads version 0x00 and firmware "M-..." and has no arm registers
+ *   (their bytes are dropped and counted in ignored_unmapped, reads give 0,
+ *   as on the Mini).
+ * XGO_WITH_INERTIAL: the accelerometer and gyroscope model of the IMU block
+ *   (0x65): without it they read 0 (a port feeds a real IMU's there).
+ *   Attitude (0x62..0x64) stays: the heading and the self-levelling use it.
+ * XGO_WITH_ODOMETRY: the world pose from the planted feet (an emulator's
+ *   observer, xgo_board_world_pose): without it the pose stays 0, 0, 0.
+ *   The inertial model needs it. */
+#ifndef XGO_WITH_LITE
+#define XGO_WITH_LITE 1
+#endif
+#ifndef XGO_WITH_MINI2
+#define XGO_WITH_MINI2 1
+#endif
+#ifndef XGO_WITH_INERTIAL
+#define XGO_WITH_INERTIAL 1
+#endif
+#ifndef XGO_WITH_ODOMETRY
+#define XGO_WITH_ODOMETRY 1
+#endif
+#if XGO_WITH_INERTIAL && !XGO_WITH_ODOMETRY
+#error "XGO_WITH_INERTIAL needs XGO_WITH_ODOMETRY (the body's path comes from it)"
+#endif
+
 /* Checks for caller bugs (XGO_ASSERT in the core): 1 = on, 0 = compiled out.
  * Only bugs are checked this way - a NULL board, a joint index past 11, a
  * board configured with a battery over 100 %, a path the code rules out.

@@ -36,6 +36,8 @@
 
 #include <stdint.h>
 
+#include "xgo/config.h" /* XGO_WITH_LITE, XGO_WITH_MINI2 */
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -148,12 +150,21 @@ typedef struct xgo_profile_s {
 #define XGO_PROFILE_LITE 1u
 #define XGO_PROFILE_MINI2 2u
 
+/* The Lite's and the Mini2's exist only where they are built in
+ * (XGO_WITH_LITE, XGO_WITH_MINI2: xgo/config.h). */
 const xgo_profile_t *xgo_profile_mini(void);
+#if XGO_WITH_LITE
 const xgo_profile_t *xgo_profile_lite(void);
+#endif
+#if XGO_WITH_MINI2
 const xgo_profile_t *xgo_profile_mini2(void);
+#endif
 
-/* Profile for a model code (0 Mini, 1 Lite, 2 Mini2); unknown codes give the
- * Mini, the default. Never NULL. */
+/* 1 if the model code's profile is built into this core. */
+int xgo_profile_built_in(unsigned model);
+
+/* Profile for a model code (0 Mini, 1 Lite, 2 Mini2); unknown codes and
+ * models not built in give the Mini, the default. Never NULL. */
 const xgo_profile_t *xgo_profile_get(unsigned model);
 
 #ifdef __cplusplus

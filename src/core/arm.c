@@ -10,6 +10,8 @@
 #include "fixed.h"
 #include "wide.h"
 
+#if XGO_WITH_MINI2 /* else the board has no arm (arm.h) */
+
 #define QUARTER_TURN ((xgo_bam_t)0x40000000u)
 
 /* v * q (Q30), in the unit of v, rounded. */
@@ -330,3 +332,4 @@ void xgo_arm_publish(const xgo_arm_t *a, xgo_regs_t *r)
     xgo_regs_set(r, XGO_REG_ARM_SHOULDER,
                  xgo_range_to_byte(&g->read_mdeg[XGO_ARM_SHOULDER], a->q_mdeg[XGO_ARM_SHOULDER]));
 }
+#endif /* XGO_WITH_MINI2 */

@@ -23,9 +23,11 @@
 #define XGO_CORE_ARM_H
 
 #include <stdint.h>
+#include <string.h>
 
 #include "regfile.h"
 #include "xgo/board_state.h" /* xgo_arm_t */
+#include "xgo/config.h"      /* XGO_WITH_MINI2 */
 #include "xgo/profile.h"
 #include "xgo/types.h"
 
@@ -33,6 +35,7 @@
 extern "C" {
 #endif
 
+#if XGO_WITH_MINI2
 #define XGO_ARM_REACHED 0
 #define XGO_ARM_PROJECTED 1
 
@@ -74,6 +77,37 @@ void xgo_arm_tick(xgo_arm_t *a, xgo_regs_t *r, const xgo_body_pose_t *pose,
 /* Where the arm servos are, into the registers the library reads them from:
  * 0x5C claw, 0x5D elbow, 0x5E shoulder (read_motor's bytes: read_mdeg). */
 void xgo_arm_publish(const xgo_arm_t *a, xgo_regs_t *r);
+#else /* XGO_WITH_MINI2 == 0: no model has an arm; the board's calls do nothing */
+static inline void xgo_arm_init(xgo_arm_t *a, const xgo_arm_geometry_t *geo)
+{
+    (void)geo;
+    memset(a, 0, sizeof *a);
+}
+
+static inline void xgo_arm_reset(xgo_arm_t *a)
+{
+    (void)a;
+}
+
+static inline void xgo_arm_tick(xgo_arm_t *a, xgo_regs_t *r, const xgo_body_pose_t *pose,
+                                const xgo_body_pose_t *stand)
+{
+    (void)a, (void)r, (void)pose, (void)stand;
+}
+
+static inline void xgo_arm_publish(const xgo_arm_t *a, xgo_regs_t *r)
+{
+    (void)a, (void)r;
+}
+
+static inline void xgo_arm_points(const xgo_arm_geometry_t *g,
+                                  const int32_t q_mdeg[XGO_ARM_JOINT_COUNT], int32_t *elbow_x,
+                                  int32_t *elbow_z, int32_t *claw_x, int32_t *claw_z)
+{
+    (void)g, (void)q_mdeg;
+    *elbow_x = *elbow_z = *claw_x = *claw_z = 0;
+}
+#endif
 
 #ifdef __cplusplus
 }

@@ -203,7 +203,8 @@ void xgo_board_init(xgo_board_t *b, const xgo_board_config_t *cfg)
     sink.on_drop = on_drop;
     sink.ctx = b;
     xgo_parser_init(&b->parser, &sink, b->config.parser_timeout_ms);
-    if ((unsigned)b->config.model >= sizeof k_models / sizeof k_models[0]) {
+    if ((unsigned)b->config.model >= sizeof k_models / sizeof k_models[0] ||
+        !xgo_profile_built_in((unsigned)b->config.model)) { /* docs: xgo/config.h */
         b->config.model = XGO_MODEL_MINI;
     }
     xgo_regs_init(&b->regs, k_models[b->config.model].firmware, k_models[b->config.model].version);

@@ -8,6 +8,8 @@
 #include "xgo/config.h"
 #include "wide.h"
 
+#if XGO_WITH_INERTIAL /* else accelerometer and gyroscope read 0 (inertial.h) */
+
 /* Second difference of a position in 1/256 um per tick^2 -> acceleration in
  * LSB * 256: * XGO_TICK_HZ^2 / 256 (um/s^2) * 16384 * 256 / g, as a Q16
  * multiplier (2.74e7 at 500 Hz). */
@@ -155,3 +157,4 @@ void xgo_inertial_body_position(const xgo_odometry_t *o, const xgo_body_pose_t *
         xgo_sincos(o->yaw + xgo_mdeg_to_bam(pose->yaw_mdeg), &heading_sc[0], &heading_sc[1]);
     }
 }
+#endif /* XGO_WITH_INERTIAL */

@@ -30,11 +30,13 @@
 #define XGO_INERTIAL_H
 
 #include <stdint.h>
+#include <string.h>
 
 #include "fixed.h"
 #include "xgo/board_state.h" /* xgo_inertial_t */
 #include "kinematics.h" /* xgo_body_pose_t */
 #include "odometry.h"
+#include "xgo/config.h" /* XGO_WITH_INERTIAL */
 
 #ifdef __cplusplus
 extern "C" {
@@ -45,6 +47,7 @@ extern "C" {
 #define XGO_GRAVITY_UM_S2 9806650
 #define XGO_INERTIAL_FILTER_SHIFT 2   /* low-pass: 1/4 of the gap per tick */
 
+#if XGO_WITH_INERTIAL
 /* A level body at rest: accel (0, 0, 16384), gyro 0. */
 void xgo_inertial_init(xgo_inertial_t *s);
 
@@ -65,6 +68,34 @@ void xgo_inertial_tick_sc(xgo_inertial_t *s, const int64_t body_q8[3], const xgo
  * once for both). */
 void xgo_inertial_body_position(const xgo_odometry_t *o, const xgo_body_pose_t *pose,
                                 int64_t body_q8[3], xgo_q30_t heading_sc[2]);
+
+#else /* XGO_WITH_INERTIAL == 0 (xgo/config.h): accelerometer and gyroscope read 0 */
+static inline void xgo_inertial_init(xgo_inertial_t *s)
+{
+    memset(s, 0, sizeof *s);
+}
+
+static inline void xgo_inertial_tick(xgo_inertial_t *s, const int64_t body_q8[3],
+                                     xgo_bam_t heading, const int32_t att_mdeg[3])
+{
+    (void)s, (void)body_q8, (void)heading, (void)att_mdeg;
+}
+
+static inline void xgo_inertial_tick_sc(xgo_inertial_t *s, const int64_t body_q8[3],
+                                        const xgo_q30_t heading_sc[2], const int32_t att_mdeg[3])
+{
+    (void)s, (void)body_q8, (void)heading_sc, (void)att_mdeg;
+}
+
+static inline void xgo_inertial_body_position(const xgo_odometry_t *o,
+                                              const xgo_body_pose_t *pose, int64_t body_q8[3],
+                                              xgo_q30_t heading_sc[2])
+{
+    (void)o, (void)pose;
+    body_q8[0] = body_q8[1] = body_q8[2] = 0;
+    heading_sc[0] = heading_sc[1] = 0;
+}
+#endif
 
 #ifdef __cplusplus
 }

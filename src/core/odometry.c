@@ -18,6 +18,7 @@ static int64_t round_shift64(int64_t v, unsigned n)
     return (v + ((int64_t)1 << (n - 1))) >> n;
 }
 
+#if XGO_WITH_ODOMETRY /* else the pose stays at the origin (odometry.h) */
 /* v / n for the support sizes 2..4, without a library division on cores
  * that have none (3: multiply by 2^32 / 3, error below 1e-9 relative). */
 static int32_t div_small(int32_t v, unsigned n)
@@ -130,6 +131,8 @@ void xgo_odometry_update(xgo_odometry_t *o, const xgo_vec3_t feet_um[XGO_LEG_COU
     o->prev_contact = contact;
     o->have_prev = 1;
 }
+
+#endif /* XGO_WITH_ODOMETRY */
 
 void xgo_odometry_pose(const xgo_odometry_t *o, xgo_world_pose_t *out)
 {

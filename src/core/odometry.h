@@ -31,6 +31,7 @@
 
 #include "fixed.h"
 #include "xgo/board_state.h" /* xgo_odometry_t */
+#include "xgo/config.h"      /* XGO_WITH_ODOMETRY */
 #include "xgo/profile.h"
 #include "xgo/types.h" /* xgo_vec3_t, xgo_world_pose_t */
 
@@ -42,9 +43,18 @@ extern "C" {
 void xgo_odometry_init(xgo_odometry_t *o);
 
 /* One tick: the feet in the machine frame (um; only x and y count); contact
- * bit leg set when that foot is on the ground. */
+ * bit leg set when that foot is on the ground. Without XGO_WITH_ODOMETRY
+ * (xgo/config.h) it does nothing: the pose stays at the origin. */
+#if XGO_WITH_ODOMETRY
 void xgo_odometry_update(xgo_odometry_t *o, const xgo_vec3_t feet_um[XGO_LEG_COUNT],
                          uint8_t contact);
+#else
+static inline void xgo_odometry_update(xgo_odometry_t *o,
+                                       const xgo_vec3_t feet_um[XGO_LEG_COUNT], uint8_t contact)
+{
+    (void)o, (void)feet_um, (void)contact;
+}
+#endif
 
 void xgo_odometry_pose(const xgo_odometry_t *o, xgo_world_pose_t *out);
 

@@ -4,6 +4,8 @@
  */
 #include "xgo/profile.h"
 
+#include "xgo/config.h" /* XGO_WITH_LITE, XGO_WITH_MINI2 */
+
 #include <stddef.h>
 
 /* Leg geometry of the Mini, from the vendor-derived mini2 URDF
@@ -44,6 +46,7 @@ static const xgo_profile_t mini_profile = {
     NULL,
 };
 
+#if XGO_WITH_LITE
 /* No public kinematic model of the Lite exists: its link geometry is
  * ASSUMED equal to the Mini's (docs/geometry.md); its ranges are the vendor
  * library's Lite set. */
@@ -60,7 +63,9 @@ static const xgo_profile_t lite_profile = {
     {10000, 25000},
     NULL,
 };
+#endif
 
+#if XGO_WITH_MINI2
 /* The Mini2's arm. Link lengths and zero offsets: the vendor library's own
  * model of it (xgolib 1.1.10 XGO_DOG: arm_init(60, 60) and its offsets
  * offset1 - 3, offset2 - 11 for servos 53 and 52; arm_pos_update's angle
@@ -93,27 +98,47 @@ static const xgo_profile_t mini2_profile = {
     MINI_OUTLINE_AND_RANGES,
     &mini2_arm,
 };
+#endif
 
 const xgo_profile_t *xgo_profile_mini(void)
 {
     return &mini_profile;
 }
 
+#if XGO_WITH_LITE
 const xgo_profile_t *xgo_profile_lite(void)
 {
     return &lite_profile;
 }
+#endif
 
+#if XGO_WITH_MINI2
 const xgo_profile_t *xgo_profile_mini2(void)
 {
     return &mini2_profile;
 }
+#endif
+
+int xgo_profile_built_in(unsigned model)
+{
+    return model == XGO_PROFILE_MINI || (model == XGO_PROFILE_LITE && XGO_WITH_LITE) ||
+           (model == XGO_PROFILE_MINI2 && XGO_WITH_MINI2);
+}
 
 const xgo_profile_t *xgo_profile_get(unsigned model)
 {
-    return model == XGO_PROFILE_LITE    ? &lite_profile
-           : model == XGO_PROFILE_MINI2 ? &mini2_profile
-                                        : &mini_profile;
+#if XGO_WITH_LITE
+    if (model == XGO_PROFILE_LITE) {
+        return &lite_profile;
+    }
+#endif
+#if XGO_WITH_MINI2
+    if (model == XGO_PROFILE_MINI2) {
+        return &mini2_profile;
+    }
+#endif
+    (void)model;
+    return &mini_profile;
 }
 
 int xgo_leg_side_x(xgo_leg_t leg)

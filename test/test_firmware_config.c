@@ -1,0 +1,195 @@
+/*
+ * test_firmware_config: the core built with the firmware images' options
+ * (XGO_FIRMWARE_OPTIONS, CMakeLists.txt) behaves as xgo/config.h documents
+ * for a feature that is compiled out - and still works as a board.
+ *
+ * Built twice (test/CMakeLists.txt): against the firmware configuration's
+ * core, and as test_firmware_config_full against the full core, so every
+ * check below also shows what the option changes (#if on the option).
+ * Only the public API and Unity: the test helpers link the full core.
+ */
+#include <string.h>
+
+#include "unity.h"
+#include "xgo/board.h"
+
+static xgo_board_t board;
+
+void setUp(void)
+{
+}
+
+void tearDown(void)
+{
+}
+
+static void init_model(xgo_model_t model)
+{
+    xgo_board_config_t cfg;
+    xgo_board_default_config(&cfg);
+    cfg.model = model;
+    xgo_board_init(&board, &cfg);
+}
+
+static void ticks(unsigned n)
+{
+    while (n-- > 0) {
+        xgo_board_tick(&board);
+    }
+}
+
+static uint8_t read1(uint8_t addr)
+{
+    uint8_t v = 0xEE;
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_board_read(&board, addr, 1, &v));
+    return v;
+}
+
+static void write1(uint8_t addr, uint8_t value)
+{
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_board_write(&board, XGO_SOURCE_CLI, addr, &value, 1));
+}
+
+/* A read request on the wire, checksum computed here: the reply's bytes. */
+static size_t wire_read(uint8_t addr, uint8_t n, uint8_t *reply, size_t max)
+{
+    uint8_t req[9] = {0x55, 0x00, 0x09, 0x02, 0, 0, 0, 0x00, 0xAA};
+    unsigned sum = 0x09 + 0x02 + addr + n;
+    req[4] = addr;
+    req[5] = n;
+    req[6] = (uint8_t)~sum;
+    xgo_board_receive(&board, req, sizeof req, 0);
+    return xgo_board_transmit(&board, reply, max);
+}
+
+static void test_models_built_in(void)
+{
+    TEST_ASSERT_EQUAL_INT(1, xgo_profile_built_in(XGO_PROFILE_MINI));
+    TEST_ASSERT_EQUAL_INT(XGO_WITH_LITE, xgo_profile_built_in(XGO_PROFILE_LITE));
+    TEST_ASSERT_EQUAL_INT(XGO_WITH_MINI2, xgo_profile_built_in(XGO_PROFILE_MINI2));
+    TEST_ASSERT_TRUE(xgo_profile_get(XGO_PROFILE_MINI) == xgo_profile_mini());
+    TEST_ASSERT_EQUAL_INT(!XGO_WITH_LITE, xgo_profile_get(XGO_PROFILE_LITE) == xgo_profile_mini());
+    TEST_ASSERT_EQUAL_INT(!XGO_WITH_MINI2, xgo_profile_get(XGO_PROFILE_MINI2) == xgo_profile_mini());
+}
+
+/* Asked for a Mini2 or a Lite that is not built in, the board is a Mini:
+ * version 0x00, firmware "M...". */
+static void test_model_not_built_in_is_served_as_mini(void)
+{
+    uint8_t fw[10];
+    init_model(XGO_MODEL_MINI2);
+    TEST_ASSERT_EQUAL_HEX8(XGO_WITH_MINI2 ? XGO_VERSION_MINI2 : XGO_VERSION_MINI,
+                           read1(XGO_REG_VERSION));
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_board_read(&board, XGO_REG_FIRMWARE, 10, fw));
+    TEST_ASSERT_EQUAL_UINT8(XGO_WITH_MINI2 ? 'W' : 'M', fw[0]);
+    init_model(XGO_MODEL_LITE);
+    TEST_ASSERT_EQUAL_HEX8(XGO_WITH_LITE ? XGO_VERSION_LITE : XGO_VERSION_MINI,
+                           read1(XGO_REG_VERSION));
+}
+
+/* Without the Mini2, the arm's registers are what the Mini has there:
+ * nothing. A write frame to them is accepted, its bytes ignored and counted;
+ * they read 0; the board has no arm. */
+static void test_arm_registers_without_mini2(void)
+{
+    uint32_t before[XGO_DIAG_COUNT], after[XGO_DIAG_COUNT];
+    xgo_board_arm_t arm;
+    init_model(XGO_MODEL_MINI2);
+    xgo_board_counters(&board, before);
+    write1(XGO_REG_ARM_X, 0xC0);
+    ticks(50);
+    xgo_board_counters(&board, after);
+    TEST_ASSERT_EQUAL_UINT32(before[XGO_DIAG_IGNORED_UNMAPPED] + !XGO_WITH_MINI2,
+                             after[XGO_DIAG_IGNORED_UNMAPPED]);
+    TEST_ASSERT_EQUAL_HEX8(XGO_WITH_MINI2 ? 0xC0 : 0x00, read1(XGO_REG_ARM_X));
+    TEST_ASSERT_EQUAL_INT(XGO_WITH_MINI2, xgo_board_arm(&board, &arm));
+}
+
+/* Trotting forward for 2 s: the legs walk either way; only with the
+ * odometry does the world pose move, only with the inertial model does the
+ * accelerometer read anything. */
+static void test_walk_without_odometry_and_inertial(void)
+{
+    int32_t start[XGO_SERVO_COUNT], now[XGO_SERVO_COUNT];
+    xgo_world_pose_t world;
+    uint8_t block[XGO_IMU_BLOCK_LEN];
+    unsigned i, moved = 0, nonzero = 0;
+    init_model(XGO_MODEL_MINI);
+    xgo_board_joints_mdeg(&board, start);
+    write1(XGO_REG_VX, 0xE0);
+    ticks(1000);
+    xgo_board_joints_mdeg(&board, now);
+    for (i = 0; i < XGO_SERVO_COUNT; i++) {
+        moved += now[i] != start[i];
+    }
+    TEST_ASSERT_TRUE(moved >= 8);
+    xgo_board_world_pose(&board, &world);
+    if (XGO_WITH_ODOMETRY) {
+        TEST_ASSERT_TRUE(world.x_um > 100000); /* 2 s at up to 190 mm/s */
+    } else {
+        TEST_ASSERT_EQUAL_INT32(0, world.x_um);
+        TEST_ASSERT_EQUAL_INT32(0, world.y_um);
+        TEST_ASSERT_EQUAL_INT32(0, world.yaw_mdeg);
+    }
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE,
+                          xgo_board_read(&board, XGO_REG_IMU_BLOCK, XGO_IMU_BLOCK_LEN, block));
+    for (i = 0; i < 12; i++) { /* accel x, y, z and gyro x, y, z, int16 LE */
+        nonzero += block[i] != 0;
+    }
+    if (XGO_WITH_INERTIAL) {
+        TEST_ASSERT_TRUE(nonzero > 0); /* 1 g on z at least */
+    } else {
+        TEST_ASSERT_EQUAL_UINT(0, nonzero);
+    }
+}
+
+/* The spec's read of the twelve servos, byte for byte, with every servo at
+ * 0x80 (servo mode): the wire protocol does not depend on the options. */
+static void test_spec_read_reply(void)
+{
+    static const uint8_t expected_head[5] = {0x55, 0x00, 0x14, 0x12, 0x50};
+    uint8_t reply[64];
+    size_t n, i;
+    unsigned sum = 0x14 + 0x12 + 0x50;
+    init_model(XGO_MODEL_MINI);
+    for (i = 0; i < XGO_SERVO_COUNT; i++) {
+        write1((uint8_t)(XGO_REG_SERVO11 + i), 0x80);
+    }
+    ticks(1500);
+    n = wire_read(XGO_REG_SERVO11, 12, reply, sizeof reply);
+    TEST_ASSERT_EQUAL_UINT(20, n);
+    TEST_ASSERT_EQUAL_HEX8_ARRAY(expected_head, reply, 5);
+    for (i = 0; i < 12; i++) {
+        TEST_ASSERT_EQUAL_HEX8(0x80, reply[5 + i]);
+        sum += reply[5 + i];
+    }
+    TEST_ASSERT_EQUAL_HEX8((uint8_t)~sum, reply[17]);
+    TEST_ASSERT_EQUAL_HEX8(0x00, reply[18]);
+    TEST_ASSERT_EQUAL_HEX8(0xAA, reply[19]);
+}
+
+/* A preset action still runs and ends (the keyframe tables are in). */
+static void test_action_runs(void)
+{
+    unsigned t;
+    init_model(XGO_MODEL_MINI);
+    write1(XGO_REG_ACTION, XGO_ACTION_SIT);
+    ticks(10);
+    TEST_ASSERT_EQUAL_UINT8(XGO_ACTION_SIT, xgo_board_action(&board));
+    for (t = 0; t < 20 * XGO_TICK_HZ && xgo_board_action(&board) != 0; t++) {
+        xgo_board_tick(&board);
+    }
+    TEST_ASSERT_EQUAL_UINT8(0, xgo_board_action(&board));
+}
+
+int main(void)
+{
+    UNITY_BEGIN();
+    RUN_TEST(test_models_built_in);
+    RUN_TEST(test_model_not_built_in_is_served_as_mini);
+    RUN_TEST(test_arm_registers_without_mini2);
+    RUN_TEST(test_walk_without_odometry_and_inertial);
+    RUN_TEST(test_spec_read_reply);
+    RUN_TEST(test_action_runs);
+    return UNITY_END();
+}
