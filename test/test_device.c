@@ -5,7 +5,8 @@
  * busy and nothing lost, control ticks and their catch-up limit, servo
  * outputs, the non-volatile data restored at init and saved once settled
  * (failures counted and retried), the parser's clock standing still while
- * input waits, and when the device may sleep.
+ * input waits, a host's hang-up dropping its partial frame once the ring is
+ * fed, and when the device may sleep.
  */
 #include <string.h>
 
@@ -381,6 +382,48 @@ static void test_input_waiting_in_the_ring_is_not_silence(void)
     TEST_ASSERT_EQUAL_HEX8_ARRAY(spec_reply, port.out, spec_reply_len);
 }
 
+/* A hang-up with the ring empty drops the partial frame at once; with
+ * --timeout-ms 0 (no silence timeout) nothing else would. */
+static void test_a_hangup_drops_the_partial_frame_at_once(void)
+{
+    xgo_board_config_t cfg;
+    xgo_board_default_config(&cfg);
+    cfg.parser_timeout_ms = 0;
+    xgo_device_init(&dev, &port, &cfg);
+    rx_all(k_spec_read, 5);
+    xgo_device_run(&dev);
+    ticks(100);
+    TEST_ASSERT_EQUAL_UINT32(0, counter(XGO_DIAG_HANGUP_DISCARDS));
+    xgo_device_hangup(&dev);
+    TEST_ASSERT_EQUAL_UINT32(1, counter(XGO_DIAG_HANGUP_DISCARDS));
+    /* The next host's request is answered, not swallowed. */
+    rx_all(k_spec_read, sizeof k_spec_read);
+    xgo_device_run(&dev);
+    TEST_ASSERT_EQUAL_UINT(spec_reply_len, port.out_len);
+    TEST_ASSERT_EQUAL_HEX8_ARRAY(spec_reply, port.out, spec_reply_len);
+}
+
+/* Bytes the departed host sent before hanging up are still in the ring: a
+ * whole request among them is answered, and only then is the partial frame
+ * after it dropped. */
+static void test_a_hangup_waits_for_the_ring_to_be_fed(void)
+{
+    rx_all(k_spec_read, sizeof k_spec_read);
+    rx_all(k_spec_read, 4);
+    xgo_device_hangup(&dev);
+    TEST_ASSERT_EQUAL_UINT32(0, counter(XGO_DIAG_HANGUP_DISCARDS)); /* not fed yet */
+    TEST_ASSERT_FALSE(xgo_device_idle(&dev));
+    xgo_device_run(&dev);
+    TEST_ASSERT_EQUAL_UINT32(1, counter(XGO_DIAG_FRAMES_OK));
+    TEST_ASSERT_EQUAL_UINT32(1, counter(XGO_DIAG_HANGUP_DISCARDS));
+    TEST_ASSERT_EQUAL_HEX8_ARRAY(spec_reply, port.out, spec_reply_len);
+    TEST_ASSERT_EQUAL_UINT(spec_reply_len, port.out_len);
+    /* Once done, it is done: a later partial frame is not dropped by it. */
+    rx_all(k_spec_read, 4);
+    xgo_device_run(&dev);
+    TEST_ASSERT_EQUAL_UINT32(1, counter(XGO_DIAG_HANGUP_DISCARDS));
+}
+
 static void test_idle_only_when_nothing_can_be_done(void)
 {
     TEST_ASSERT_TRUE(xgo_device_idle(&dev));
@@ -412,6 +455,8 @@ int main(void)
     RUN_TEST(test_a_failed_save_is_counted_and_retried);
     RUN_TEST(test_silence_drops_a_partial_frame);
     RUN_TEST(test_input_waiting_in_the_ring_is_not_silence);
+    RUN_TEST(test_a_hangup_drops_the_partial_frame_at_once);
+    RUN_TEST(test_a_hangup_waits_for_the_ring_to_be_fed);
     RUN_TEST(test_idle_only_when_nothing_can_be_done);
     return UNITY_END();
 }

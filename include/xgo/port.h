@@ -75,7 +75,10 @@ typedef struct xgo_port_s xgo_port_t;
 
 /* Milliseconds of a monotonic clock (may wrap), readable from
  * xgo_device_init on: the parser's silence timeout measures gaps on the line
- * with it (time in which input waited in the ring does not count). */
+ * with it (time in which input waited in the ring does not count). A port
+ * that holds received bytes outside the ring too (a FIFO it drains later,
+ * xgo-emu's pty) lets this clock stand still while such bytes wait: they
+ * were on the line, so that time was no silence. */
 uint32_t xgo_port_millis(xgo_port_t *port);
 
 /* How many reply bytes the port can take right now without blocking (0 when
@@ -123,6 +126,7 @@ typedef struct xgo_device_s {
     volatile uint16_t rx_head;        /* next byte to store: producer only */
     volatile uint16_t rx_tail;        /* next byte to feed: consumer only */
     volatile uint8_t rx_paused;       /* the producer found the ring full */
+    uint8_t hangup_pending;           /* xgo_device_hangup() waits for the ring */
     volatile uint32_t tick_signals;   /* control periods elapsed: producer only */
     uint32_t tick_taken;              /* ... of which handled (run or skipped) */
     uint32_t nv_changes_saved;        /* xgo_board_nv_changes() at the last save */
@@ -151,6 +155,15 @@ int xgo_device_rx_put(xgo_device_t *d, uint8_t byte);
 
 /* Timer interrupt: one control period (1 / XGO_TICK_HZ s) has elapsed. */
 void xgo_device_tick_due(xgo_device_t *d);
+
+/* Main loop: the host went away (a USB CDC port closed, a Bluetooth link
+ * dropped, xgo-emu's pty closed by its last host). A frame it left half sent
+ * must not prefix the next host's first request, so once the bytes already
+ * in the ring are fed (at once if it is empty), the parser drops its partial
+ * frame (drop reason hang-up, counter hangup_discards). Call it after
+ * storing the last byte the departed host sent. A plain UART cannot tell:
+ * there the parser's silence timeout does this job. */
+void xgo_device_hangup(xgo_device_t *d);
 
 /* Main loop: does all work that is due (ticks, input, replies, NV save).
  * Never blocks. */

@@ -187,6 +187,23 @@ static uint32_t wire_clock(xgo_device_t *d)
     return d->wire_ms;
 }
 
+/* The departed host's partial frame, once nothing it sent waits in the
+ * ring; what the drop's rescan finds is answered like any frame. */
+static void end_session(xgo_device_t *d)
+{
+    d->hangup_pending = 0;
+    xgo_board_hangup(&d->board);
+    send_replies(d);
+}
+
+void xgo_device_hangup(xgo_device_t *d)
+{
+    d->hangup_pending = 1;
+    if (d->rx_head == d->rx_tail) {
+        end_session(d);
+    }
+}
+
 void xgo_device_run(xgo_device_t *d)
 {
     const uint32_t now_ms = wire_clock(d);
@@ -196,6 +213,9 @@ void xgo_device_run(xgo_device_t *d)
         /* Only with nothing held back: bytes waiting in the ring are not
          * silence on the line. */
         xgo_board_poll(&d->board, now_ms);
+        if (d->hangup_pending) {
+            end_session(d);
+        }
     }
     send_replies(d);
 }
