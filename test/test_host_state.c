@@ -583,7 +583,7 @@ static void test_planted_fifo_at_the_temporary_name_is_not_used(void)
     snprintf(plant, sizeof plant, "%s.tmp.%ld", g_state, (long)g_emu.pid);
     TEST_ASSERT_EQUAL_INT(0, mkfifo(plant, 0666));
     g_port = port_open();
-    write_regs(g_port, 0x13, "Fifo", 4); /* a change: saved at the next tick */
+    write_regs(g_port, 0x13, "Fifo", 4); /* saved once a tick passes without a change */
     xgo_test_sleep_us(50000);
     read_regs(g_port, 0x13, XGO_BT_NAME_LEN, back); /* still serving */
     TEST_ASSERT_EQUAL_MEMORY("Fifo\0\0\0\0\0", back, XGO_BT_NAME_LEN);
@@ -641,8 +641,10 @@ static int name_in(const char *name, char (*names)[XGO_BT_NAME_LEN + 1], int n)
     return 0;
 }
 
-/* Renames the board as fast as the pty takes them for delay_us, recording
- * every name sent. */
+/* Renames the board every 5 ms for delay_us, recording every name sent.
+ * The device saves once a control tick (2 ms) passed without a change
+ * (xgo-emu's XGO_PORT_NV_SETTLE_TICKS), so each rename is followed by a save
+ * under way while the next one arrives. */
 static int rename_burst(int round, long delay_us, char (*names)[XGO_BT_NAME_LEN + 1], int max)
 {
     long long end = xgo_test_now_us() + delay_us;
@@ -659,7 +661,7 @@ static int rename_burst(int round, long delay_us, char (*names)[XGO_BT_NAME_LEN 
                 n++; /* a partial write is at worst a name never sent whole */
             }
         }
-        xgo_test_sleep_us(200);
+        xgo_test_sleep_us(5000);
     } while (xgo_test_now_us() < end);
     return n;
 }

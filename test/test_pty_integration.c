@@ -865,6 +865,51 @@ static void test_counters_are_printed_at_exit(void)
     TEST_ASSERT_NOT_NULL_MESSAGE(strstr(g_emu.err, "  ticks "), g_emu.err);
 }
 
+/* The counter `name` from the lines xgo-emu printed at exit. */
+static unsigned long exit_counter(const char *name)
+{
+    char key[64];
+    const char *at;
+    snprintf(key, sizeof key, "\n  %s ", name);
+    at = strstr(g_emu.err, key);
+    TEST_ASSERT_NOT_NULL_MESSAGE(at, name);
+    return strtoul(at + strlen(key), NULL, 10);
+}
+
+/* xgo-emu drives the board through the core's device layer (xgo/port.h),
+ * as the firmware does, with no path of its own: 1000 bytes of noise and a
+ * request, written while it is stopped so that one read takes them all,
+ * fill its 256-byte receive ring, which pauses input (device_rx_pauses)
+ * until the board has taken them; every byte read is fed by the device,
+ * the reply leaves through it, and a rename is saved by it once settled. */
+static void test_the_board_is_driven_through_the_device(void)
+{
+    static const uint8_t name[] = "Dev";
+    uint8_t burst[1000 + sizeof k_spec_read];
+    uint8_t reply[sizeof k_spec_reply];
+    emu_start_linked(NULL, NULL);
+    g_port = port_open_like_pyserial(g_link, B115200);
+    memset(burst, 0x11, 1000);
+    memcpy(burst + 1000, k_spec_read, sizeof k_spec_read);
+    xgo_test_sleep_ms(20); /* it has seen the host attach */
+    TEST_ASSERT_EQUAL_INT(0, kill(g_emu.pid, SIGSTOP));
+    port_write(g_port, burst, sizeof burst);
+    xgo_test_sleep_ms(20); /* all of it readable on the master */
+    TEST_ASSERT_EQUAL_INT(0, kill(g_emu.pid, SIGCONT));
+    TEST_ASSERT_EQUAL_INT((int)sizeof reply,
+                          (int)xgo_test_port_read(g_port, reply, sizeof reply, REPLY_TIMEOUT_MS));
+    TEST_ASSERT_EQUAL_HEX8_ARRAY(k_spec_reply, reply, sizeof reply);
+    write_regs(g_port, 0x13, name, 3);
+    xgo_test_sleep_ms(50); /* settled: a tick without another change */
+    emu_stop_cleanly(SIGTERM);
+    TEST_ASSERT_EQUAL_UINT32(sizeof burst + XGO_FRAME_OVERHEAD + 3u, exit_counter("host_bytes_in"));
+    TEST_ASSERT_EQUAL_UINT32(sizeof burst + XGO_FRAME_OVERHEAD + 3u, exit_counter("device_rx_bytes"));
+    TEST_ASSERT_TRUE_MESSAGE(exit_counter("device_rx_pauses") >= 1, g_emu.err);
+    TEST_ASSERT_EQUAL_UINT32(sizeof reply, exit_counter("device_tx_bytes"));
+    TEST_ASSERT_EQUAL_UINT32(sizeof reply, exit_counter("host_bytes_out"));
+    TEST_ASSERT_EQUAL_UINT32(1, exit_counter("device_nv_saves"));
+}
+
 int main(void)
 {
     int rc;
@@ -900,6 +945,7 @@ int main(void)
     RUN_TEST(test_help_and_version_exit_0);
     RUN_TEST(test_trace_prints_one_line_per_frame);
     RUN_TEST(test_counters_are_printed_at_exit);
+    RUN_TEST(test_the_board_is_driven_through_the_device);
     RUN_TEST(test_profile_and_battery_options_reach_the_board);
     RUN_TEST(test_ground_tilt_misuse_exits_2);
     RUN_TEST(test_ground_tilt_and_self_levelling);

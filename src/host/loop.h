@@ -1,7 +1,11 @@
 /*
- * loop.h - xgo-emu's event loop: bytes from the pty into the board, replies
- * back out, and the board's control tick at a fixed rate on the monotonic
- * clock. Single-threaded; poll() never waits longer than the next tick.
+ * loop.h - xgo-emu's event loop: what a firmware's interrupts and main loop
+ * do, on one thread. Each turn it signals the control ticks that are due on
+ * the monotonic clock (xgo_device_tick_due: the timer interrupt), stores the
+ * host's bytes in the device's ring and runs the device (xgo_device_run),
+ * writes replies to the pty, serves the services, and poll()s - never
+ * longer than until the next tick. The pty side is the port
+ * (port_posix.h); the board is reached only through the device.
  */
 #ifndef XGO_HOST_LOOP_H
 #define XGO_HOST_LOOP_H
@@ -11,25 +15,8 @@
 #include <stdint.h>
 #include <stdio.h>
 
-#include "outq.h"
-#include "pty.h"
-#include "state_file.h"
 #include "trace.h"
-#include "xgo/board.h"
-
-/* Host-side outcomes, printed at exit next to the board's own counters. */
-typedef struct xgo_host_counters_s {
-    uint64_t bytes_in;          /* read from the host */
-    uint64_t bytes_out;         /* written to the host */
-    uint64_t bytes_discarded;   /* replies dropped because the host had gone away */
-    uint64_t host_attaches;     /* times a host was seen opening the port */
-    uint64_t host_hangups;      /* times the host was seen closing it */
-    uint64_t write_stalls;      /* writes refused (EAGAIN): the host was not reading */
-    uint64_t ticks;             /* control ticks run */
-    uint64_t ticks_skipped;     /* ticks given up after a long stall (see loop.c) */
-} xgo_host_counters_t;
-
-#define XGO_HOST_INBUF_BYTES 4096u
+#include "xgo/port.h"
 
 /* What passed the board's serial line, for on_line (the values of
  * xgo_pcap_dir_t, src/host/pcap.h). */
@@ -64,37 +51,12 @@ typedef struct xgo_host_service_s {
 #define XGO_HOST_MAX_SERVICE_FDS 32u
 
 typedef struct xgo_host_loop_s {
-    xgo_board_t *board;
-    const xgo_host_pty_t *pty;
+    xgo_device_t *device;
+    xgo_port_t *port;
     xgo_host_trace_t *trace;   /* NULL without --trace */
-    xgo_host_state_t *state;   /* NULL without --state */
-    int baud_pacing;
-    uint32_t uart_baud;        /* --uart-baud: the board's UART speed; 0 = no line model */
     volatile sig_atomic_t *stop; /* set by a signal handler */
 
-    uint8_t in[XGO_HOST_INBUF_BYTES]; /* read from the host, not yet fed */
-    size_t in_len;
-    size_t in_fed;
-    int in_orphaned;            /* `in` was read after its host hung up */
-    uint64_t in_wire_start_us;  /* pacing: when in[0] started arriving on the wire */
-    uint32_t in_bytes_per_s;    /* pacing: line speed while `in` arrived */
-    uint64_t rx_wire_free_us;   /* pacing: when the host's last byte has fully arrived */
-
-    xgo_host_outq_t out;
-    uint64_t tx_wire_free_us;   /* pacing: when our last queued byte leaves */
-    int out_blocked;            /* last write hit EAGAIN: wait for POLLOUT */
-    int host_gone;              /* no host has the slave open */
-    int hangup_pending;         /* the host left; its partial frame goes once its input is fed */
-
-    /* The parser's clock: real time minus the time input was waiting (in
-     * `in` or unread in the pty). Its silence timeout must measure silence
-     * on the line, not our own delays (a full output queue, a stall). */
-    uint64_t wire_us;
-    uint64_t wire_seen_us;      /* real time wire_us was last brought up to */
-
     uint64_t next_tick_us;
-    xgo_host_counters_t counters;
-
     uint32_t late_hist[XGO_HOST_LATE_BUCKETS];
     uint64_t late_max_us;
 
@@ -105,17 +67,17 @@ typedef struct xgo_host_loop_s {
     size_t service_nfds[XGO_HOST_MAX_SERVICES];
 } xgo_host_loop_t;
 
-void xgo_host_loop_init(xgo_host_loop_t *l, xgo_board_t *board, const xgo_host_pty_t *pty,
-                        xgo_host_trace_t *trace, int baud_pacing, volatile sig_atomic_t *stop);
+/* The device must be initialised on port (xgo_host_port_init, then
+ * xgo_device_init); the loop attaches the port to itself (pacing and the
+ * UART model as given: port_posix.h). */
+void xgo_host_loop_init(xgo_host_loop_t *l, xgo_device_t *device, xgo_port_t *port,
+                        xgo_host_trace_t *trace, int baud_pacing, uint32_t uart_baud,
+                        volatile sig_atomic_t *stop);
 
-/* Keep the board's non-volatile data saved in state while serving: checked
- * after every round of ticks (a save happens only when it changed). */
-void xgo_host_loop_set_state(xgo_host_loop_t *l, xgo_host_state_t *state);
-
-/* Model the board's UART at board_baud (0: off): a host whose port is set to
- * another speed gets what a real UART gives it, garbled bytes both ways
- * (uart_model.h), framing errors counted in the diagnostic block. */
-void xgo_host_loop_set_uart(xgo_host_loop_t *l, uint32_t board_baud);
+/* For the port: tells the services what passed the line (XGO_HOST_LINE_*),
+ * and that a control tick has run. */
+void xgo_host_loop_tap(xgo_host_loop_t *l, int what, const uint8_t *bytes, size_t n);
+void xgo_host_loop_after_tick(xgo_host_loop_t *l);
 
 /* Serves s too from now on (s must outlive the loop). Returns 0, or -1
  * when XGO_HOST_MAX_SERVICES are already added. */
@@ -132,7 +94,8 @@ int xgo_host_loop_pty_waiting(const xgo_host_loop_t *l);
  * a reason other than a signal (message on stderr). */
 int xgo_host_loop_run(xgo_host_loop_t *l);
 
-/* Writes "name value" lines for the board's and the host's counters. */
+/* Writes "name value" lines for the board's, the device's and the host's
+ * counters. */
 void xgo_host_loop_print_counters(const xgo_host_loop_t *l, FILE *out);
 
 #endif /* XGO_HOST_LOOP_H */

@@ -16,6 +16,7 @@
 #include "link.h"
 #include "loop.h"
 #include "options.h"
+#include "port_posix.h"
 #include "pty.h"
 #include "record.h"
 #include "state_file.h"
@@ -24,6 +25,7 @@
 #include "view_server.h"
 #include "xgo/board.h"
 #include "xgo/emulator.h"
+#include "xgo/port.h"
 
 #define XGO_EXIT_OK 0
 #define XGO_EXIT_RUNTIME 1
@@ -60,7 +62,8 @@ static int xgo_host_install_signals(void)
  * large, and it lives as long as the process). */
 typedef struct xgo_host_emu_s {
     xgo_host_options_t opts;
-    xgo_board_t board;
+    xgo_device_t device;        /* the board, driven through xgo/port.h */
+    xgo_port_t port;            /* the pty as its UART, --state as its flash */
     xgo_host_loop_t loop;
     xgo_host_view_t view;       /* --view: 2.4 MB of client buffers */
     xgo_host_record_t record;   /* --record */
@@ -90,29 +93,46 @@ static int xgo_host_open_outputs(xgo_host_emu_t *e)
         }
     }
     if (opts->record_path != NULL &&
-        xgo_host_record_open(&e->record, opts->record_path, opts->record_hz, &e->board, e->err,
-                             sizeof e->err) != 0) {
+        xgo_host_record_open(&e->record, opts->record_path, opts->record_hz,
+                             xgo_device_board(&e->device), e->err, sizeof e->err) != 0) {
         return -1;
     }
     /* the capture's first note holds the board as loaded */
     return opts->capture_path == NULL ? 0
                                       : xgo_host_capture_open(&e->capture, opts->capture_path,
-                                                              &e->board, e->err, sizeof e->err);
+                                                              xgo_device_board(&e->device),
+                                                              e->err, sizeof e->err);
 }
 
-/* The board (and its saved state), the outputs, the pty, the TCP bridge
+/* The --state file, then the device on our port: the board starts with
+ * what xgo_port_nv_load gives it, as firmware does from flash. */
+static int xgo_host_emu_open_device(xgo_host_emu_t *e)
+{
+    const xgo_host_options_t *opts = &e->opts;
+    xgo_host_state_t *state = opts->state_path != NULL ? &e->state : NULL;
+    if (state != NULL && xgo_host_state_open(state, opts->state_path, e->err, sizeof e->err) != 0) {
+        return -1;
+    }
+    xgo_host_port_init(&e->port, &e->pty, state);
+    xgo_device_init(&e->device, &e->port, &opts->board);
+    /* An emulator input: the ground a real robot stands on (board.h). */
+    xgo_board_set_ground_tilt(xgo_device_board(&e->device), opts->ground_roll_mdeg,
+                              opts->ground_pitch_mdeg);
+    return state == NULL ? 0
+                         : xgo_host_state_check(state, xgo_device_board(&e->device), e->err,
+                                                sizeof e->err);
+}
+
+/* The device (and its saved state), the outputs, the pty, the TCP bridge
  * (it needs the pty's path) and the --link. Returns 0, or -1 with the
  * reason in e->err. */
 static int xgo_host_emu_open(xgo_host_emu_t *e)
 {
     const xgo_host_options_t *opts = &e->opts;
     char replaced[4096]; /* the target of a stale --link symlink we replaced */
-    xgo_board_init(&e->board, &opts->board);
-    xgo_board_set_ground_tilt(&e->board, opts->ground_roll_mdeg, opts->ground_pitch_mdeg);
     e->tcp.listen_fd = -1;
-    if ((opts->state_path != NULL &&
-         xgo_host_state_open(&e->state, opts->state_path, &e->board, e->err, sizeof e->err) != 0) ||
-        xgo_host_open_outputs(e) != 0 || xgo_host_pty_open(&e->pty, e->err, sizeof e->err) != 0) {
+    if (xgo_host_emu_open_device(e) != 0 || xgo_host_open_outputs(e) != 0 ||
+        xgo_host_pty_open(&e->pty, e->err, sizeof e->err) != 0) {
         return -1;
     }
     e->pty_open = 1;
@@ -138,20 +158,16 @@ static void xgo_host_emu_attach(xgo_host_emu_t *e)
 {
     const xgo_host_options_t *opts = &e->opts;
     xgo_host_trace_t *trace = opts->trace ? &e->trace : NULL;
+    xgo_board_t *board = xgo_device_board(&e->device);
     xgo_host_trace_init(&e->trace, stderr, xgo_host_clock_us());
     e->trace.arm = opts->board.model == XGO_MODEL_MINI2;
     if (trace != NULL) {
-        xgo_board_set_trace(&e->board, xgo_host_trace_event, trace);
+        xgo_board_set_trace(board, xgo_host_trace_event, trace);
     }
-    xgo_host_loop_init(&e->loop, &e->board, &e->pty, trace, opts->baud_pacing,
+    xgo_host_loop_init(&e->loop, &e->device, &e->port, trace, opts->baud_pacing, opts->uart_baud,
                        &xgo_host_stop_requested);
-    xgo_host_loop_set_uart(&e->loop, opts->uart_baud);
-    if (opts->state_path != NULL) {
-        xgo_host_loop_set_state(&e->loop, &e->state);
-    }
     if (opts->view) {
-        (void)xgo_host_view_attach(&e->view, &e->board, (unsigned)opts->board.model, &e->loop,
-                                   trace);
+        (void)xgo_host_view_attach(&e->view, board, (unsigned)opts->board.model, &e->loop, trace);
     }
     if (opts->record_path != NULL) {
         (void)xgo_host_loop_add_service(&e->loop, &e->record.service);
@@ -185,7 +201,7 @@ static int xgo_host_emu_close(xgo_host_emu_t *e, int served)
     int rc = 0;
     /* A change the board received but never saved is a runtime error. */
     if (served && opts->state_path != NULL &&
-        xgo_host_state_close(&e->state, &e->board, stderr) != 0) {
+        xgo_host_state_close(&e->state, xgo_device_board(&e->device), stderr) != 0) {
         rc = -1;
     }
     if (served && opts->trace) {

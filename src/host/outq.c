@@ -17,6 +17,20 @@ size_t xgo_host_outq_room(const xgo_host_outq_t *q)
     return XGO_HOST_OUTQ_BYTES - q->len;
 }
 
+/* Does a push starting at start_us continue segment s without a gap? Then
+ * it joins s: replies handed over a few bytes at a time (the device's
+ * chunks) take one segment, not one each. Paced: it starts no later than
+ * s's last byte leaves (1 us of rounding allowed). */
+static int xgo_host_outq_continues(const xgo_host_segment_t *s, uint64_t start_us,
+                                   uint32_t bytes_per_s)
+{
+    if (s->bytes_per_s != bytes_per_s) {
+        return 0;
+    }
+    return bytes_per_s == 0 ||
+           start_us <= s->start_us + (uint64_t)s->len * 1000000u / bytes_per_s + 1u;
+}
+
 void xgo_host_outq_push(xgo_host_outq_t *q, const uint8_t *bytes, size_t n, uint64_t start_us,
                         uint32_t bytes_per_s)
 {
@@ -26,6 +40,11 @@ void xgo_host_outq_push(xgo_host_outq_t *q, const uint8_t *bytes, size_t n, uint
     }
     memcpy(q->bytes + q->len, bytes, n);
     q->len += n;
+    if (q->seg_count > 0 &&
+        xgo_host_outq_continues(&q->seg[q->seg_count - 1], start_us, bytes_per_s)) {
+        q->seg[q->seg_count - 1].len += n;
+        return;
+    }
     s = &q->seg[q->seg_count++];
     s->len = n;
     s->sent = 0;

@@ -40,7 +40,8 @@ void xgo_host_outq_init(xgo_host_outq_t *q);
 /* Room for more bytes (0 also when the segment table is full). */
 size_t xgo_host_outq_room(const xgo_host_outq_t *q);
 
-/* Appends n <= room bytes as one segment; bytes_per_s 0 = unpaced. */
+/* Appends n <= room bytes as one segment, or to the last one when they
+ * follow it without a gap at the same rate; bytes_per_s 0 = unpaced. */
 void xgo_host_outq_push(xgo_host_outq_t *q, const uint8_t *bytes, size_t n, uint64_t start_us,
                         uint32_t bytes_per_s);
 

@@ -534,81 +534,96 @@ int xgo_host_state_remove_stale(const char *path)
 
 /* ------------------------------------------------ keeping a board saved */
 
-int xgo_host_state_open(xgo_host_state_t *s, const char *path, xgo_board_t *b, char *err,
-                        size_t err_size)
+/* Field by field: the struct has padding. */
+static int xgo_host_nv_equal(const xgo_board_nv_t *a, const xgo_board_nv_t *b)
 {
-    xgo_board_nv_t nv;
+    return memcmp(a->bt_name, b->bt_name, sizeof a->bt_name) == 0 &&
+           memcmp(a->zero_offset_mdeg, b->zero_offset_mdeg, sizeof a->zero_offset_mdeg) == 0;
+}
+
+int xgo_host_state_open(xgo_host_state_t *s, const char *path, char *err, size_t err_size)
+{
     char why[XGO_HOST_STATE_PATH_MAX + 128];
     memset(s, 0, sizeof *s);
     s->path = path;
     (void)xgo_host_state_remove_stale(path);
-    switch (xgo_host_state_load(path, &nv, why, sizeof why)) {
+    switch (xgo_host_state_load(path, &s->saved, why, sizeof why)) {
     case XGO_HOST_STATE_LOADED:
-        if (!xgo_board_set_nv(b, &nv)) {
-            snprintf(err, err_size,
-                     "--state %s: values out of range (bt_name 1..10 printable ASCII, zero "
-                     "offsets within +-360000 mdeg); refusing to start, fix or remove the file",
-                     path);
-            return -1;
-        }
+        s->loaded = 1;
         break;
     case XGO_HOST_STATE_MISSING:
-        xgo_board_get_nv(b, &nv);
-        if (xgo_host_state_save(path, &nv, why, sizeof why) != 0) {
-            snprintf(err, err_size, "--state %s: %s", path, why);
-            return -1;
-        }
         break;
     case XGO_HOST_STATE_BAD:
         snprintf(err, err_size, "--state %s: %s; refusing to start, fix or remove the file", path,
                  why);
         return -1;
     }
-    s->saved = nv;
-    s->saved_changes = xgo_board_nv_changes(b);
     return 0;
 }
 
-static int xgo_host_state_save_board(xgo_host_state_t *s, const xgo_board_t *b, FILE *log,
-                                     const char *after_failure)
+int xgo_host_state_loaded(const xgo_host_state_t *s, xgo_board_nv_t *nv)
+{
+    if (s->loaded) {
+        *nv = s->saved;
+    }
+    return s->loaded;
+}
+
+int xgo_host_state_check(xgo_host_state_t *s, const xgo_board_t *b, char *err, size_t err_size)
 {
     char why[XGO_HOST_STATE_PATH_MAX + 128];
     xgo_board_nv_t nv;
-    const uint32_t changes = xgo_board_nv_changes(b);
     xgo_board_get_nv(b, &nv);
+    if (s->loaded) {
+        if (!xgo_host_nv_equal(&nv, &s->saved)) { /* the board kept its defaults */
+            snprintf(err, err_size,
+                     "--state %s: values out of range (bt_name 1..10 printable ASCII, zero "
+                     "offsets within +-360000 mdeg); refusing to start, fix or remove the file",
+                     s->path);
+            return -1;
+        }
+        return 0;
+    }
     if (xgo_host_state_save(s->path, &nv, why, sizeof why) != 0) {
-        fprintf(log, "xgo-emu: --state %s: %s (%s)\n", s->path, why, after_failure);
-        s->failed = 1;
-        s->failed_changes = changes;
+        snprintf(err, err_size, "--state %s: %s", s->path, why);
         return -1;
     }
-    s->failed = 0;
     s->saved = nv;
-    s->saved_changes = changes;
     return 0;
 }
 
-int xgo_host_state_sync(xgo_host_state_t *s, const xgo_board_t *b, FILE *log)
+static int xgo_host_state_save_nv(xgo_host_state_t *s, const xgo_board_nv_t *nv, FILE *log,
+                                  const char *after_failure)
 {
-    const uint32_t changes = xgo_board_nv_changes(b);
-    if (changes == s->saved_changes) {
+    char why[XGO_HOST_STATE_PATH_MAX + 128];
+    if (xgo_host_state_save(s->path, nv, why, sizeof why) != 0) {
+        if (!s->failed || !xgo_host_nv_equal(nv, &s->failed_nv)) {
+            fprintf(log, "xgo-emu: --state %s: %s (%s)\n", s->path, why, after_failure);
+        }
+        s->failed = 1;
+        s->failed_nv = *nv;
+        return -1;
+    }
+    s->failed = 0;
+    s->saved = *nv;
+    return 0;
+}
+
+int xgo_host_state_store(xgo_host_state_t *s, const xgo_board_nv_t *nv, FILE *log)
+{
+    if (!s->failed && xgo_host_nv_equal(nv, &s->saved)) {
         return 0;
     }
-    if (s->failed && changes == s->failed_changes) {
-        return -1; /* reported already: retried at the next change or at exit */
-    }
-    return xgo_host_state_save_board(s, b, log, "will retry at the next change and at exit");
+    return xgo_host_state_save_nv(s, nv, log, "retrying while serving and at exit");
 }
 
 int xgo_host_state_close(xgo_host_state_t *s, const xgo_board_t *b, FILE *log)
 {
     xgo_board_nv_t nv;
     xgo_board_get_nv(b, &nv);
-    /* Field by field: the struct has padding. */
-    if (xgo_board_nv_changes(b) == s->saved_changes &&
-        memcmp(nv.bt_name, s->saved.bt_name, sizeof nv.bt_name) == 0 &&
-        memcmp(nv.zero_offset_mdeg, s->saved.zero_offset_mdeg, sizeof nv.zero_offset_mdeg) == 0) {
+    if (!s->failed && xgo_host_nv_equal(&nv, &s->saved)) {
         return 0;
     }
-    return xgo_host_state_save_board(s, b, log, "the last changes are lost");
+    s->failed = 0; /* the last word: always reported */
+    return xgo_host_state_save_nv(s, &nv, log, "the last changes are lost");
 }

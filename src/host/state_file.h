@@ -63,32 +63,43 @@ int xgo_host_state_save(const char *path, const xgo_board_nv_t *nv, char *err, s
  * only regular files owned by us. Returns how many were removed. */
 int xgo_host_state_remove_stale(const char *path);
 
-/* --- Keeping a running board's data saved ------------------------------ */
+/* --- Keeping a running board's data saved ------------------------------
+ * xgo-emu's port (port_posix.c) is the board's flash: the device layer
+ * restores the data through xgo_port_nv_load at start and saves it through
+ * xgo_port_nv_save once it has settled (XGO_PORT_NV_SETTLE_TICKS, 200 ms),
+ * retrying a failed save each settle period. */
 
 typedef struct xgo_host_state_s {
     const char *path;
-    xgo_board_nv_t saved;    /* what the file holds */
-    uint32_t saved_changes;  /* xgo_board_nv_changes() when it was saved */
-    uint32_t failed_changes; /* ... when the last failed save was tried */
-    int failed;              /* the last save failed (and was reported) */
+    xgo_board_nv_t saved;     /* what the file holds */
+    int loaded;               /* the file existed at start: saved is its content */
+    xgo_board_nv_t failed_nv; /* what the last failed save tried to write */
+    int failed;               /* the last save failed (and was reported) */
 } xgo_host_state_t;
 
-/* Start-up: removes stale temporary files, loads path into the board, or,
- * if there is no file yet, saves the board's defaults there at once (so a
- * path that cannot be written is reported now, not at exit). Returns 0, or
- * -1 with a one-line reason in err: the file is unreadable, damaged or holds
- * values the board refuses. The file is then left exactly as it was. */
-int xgo_host_state_open(xgo_host_state_t *s, const char *path, xgo_board_t *b, char *err,
-                        size_t err_size);
+/* Start-up, before the board exists: removes stale temporary files and
+ * loads path, if there is a file. Returns 0, or -1 with a one-line reason in
+ * err: the file is unreadable or damaged (it is then left as it was). */
+int xgo_host_state_open(xgo_host_state_t *s, const char *path, char *err, size_t err_size);
 
-/* Saves if the board's data changed since the last save. A failure is
- * reported on log once and retried at the next change (or at exit). Returns
- * 0 when the file is up to date, -1 when it is not. */
-int xgo_host_state_sync(xgo_host_state_t *s, const xgo_board_t *b, FILE *log);
+/* xgo_port_nv_load: 1 and the file's data in nv, or 0 when there was no
+ * file. */
+int xgo_host_state_loaded(const xgo_host_state_t *s, xgo_board_nv_t *nv);
 
-/* At exit: saves if the board's data differs from the file (also a change
- * received but not yet seen by a tick), retrying a failed save. Returns 0
- * when the file is up to date, -1 (reported on log) when it is not. */
+/* After the board took (or refused) the loaded data: -1 with a reason in err
+ * when it refused the file's values (it keeps its defaults then); without a
+ * file, saves the board's defaults there at once (so a path that cannot be
+ * written is reported now, not at exit). Returns 0 when serving may start. */
+int xgo_host_state_check(xgo_host_state_t *s, const xgo_board_t *b, char *err, size_t err_size);
+
+/* xgo_port_nv_save: saves nv if it differs from the file (or the last save
+ * failed). A failure is reported on log once for the same data. Returns 0
+ * when the file is up to date, -1 when it is not. */
+int xgo_host_state_store(xgo_host_state_t *s, const xgo_board_nv_t *nv, FILE *log);
+
+/* At exit: saves if the board's data differs from the file (a change not
+ * yet settled, or a failed save). Returns 0 when the file is up to date, -1
+ * (reported on log) when it is not. */
 int xgo_host_state_close(xgo_host_state_t *s, const xgo_board_t *b, FILE *log);
 
 #endif /* XGO_HOST_STATE_FILE_H */
