@@ -342,13 +342,6 @@ static const int32_t sin_tab[129] = {
     1073418433, 1073660973, 1073741824,
 };
 
-/* pi/2 * 2^34: converts a BAM offset d to radians in Q34
- * (d * 2pi / 2^32 * 2^34 = d * pi/2 * 2^4, done as d * PI_2_Q34 / 2^30).
- * Above 2^32, so multiplied in two parts: 6 * 2^32 + PI_2_Q34_LOW. */
-#define PI_2_Q34 26986075409LL
-#define PI_2_Q34_HIGH 6
-#define PI_2_Q34_LOW 1216271633 /* PI_2_Q34 - 6 * 2^32, < 2^31 */
-
 static int32_t clamp_unit(int32_t v)
 {
     if (v > XGO_Q30_ONE) {
@@ -360,46 +353,48 @@ static int32_t clamp_unit(int32_t v)
     return v;
 }
 
-/* v / 2^n rounded to nearest (ties up). */
-static int64_t rshift_round(int64_t v, unsigned n)
-{
-    return (v + ((int64_t)1 << (n - 1u))) >> n;
-}
+/* 8 pi - 25 in Q19, rounded: with 25 it turns a BAM offset into radians in
+ * Q34 (d * 2 pi / 2^32 * 2^34 = d * 8 pi). */
+#define EIGHT_PI_FRAC_Q19 69595
 
-/* round(v / 3) as (|v| + 1) / 3 with the sign of v, for |v| < 2^15 - 1: a
- * multiply by ceil(2^16 / 3) = 21846 and a shift is exact there
- * (n * 21846 = n * 2^16 / 3 + 2n / 3, and 2n / 3 < 2^16 / 3 keeps the floor),
- * and avoids a division call on cores without a divider. */
+/* round(v / 3) for 0 <= v < 2^15 - 1: a multiply by ceil(2^16 / 3) = 21846
+ * and a shift is exact there, and needs no division (Cortex-M0). */
 static int32_t div3_small(int32_t v)
 {
-    if (v >= 0) {
-        return (int32_t)(((uint32_t)v + 1u) * 21846u >> 16);
-    }
-    return -(int32_t)(((uint32_t)-v + 1u) * 21846u >> 16);
+    return (int32_t)(((uint32_t)v + 1u) * 21846u >> 16);
 }
 
+/* The nearest table node and the angle-addition formulas:
+ *   sin(a + d) = s0 cos d + c0 sin d,  cos(a + d) = c0 cos d - s0 sin d,
+ * sin d = d - d^3/6 (next term < 1e-13), 1 - cos d = d^2/2 (next term
+ * 6e-11). Only the two products with sin d need 32 x 32 -> 64 bits; the
+ * small terms are 16 x 16-bit products (one MULS each on a Cortex-M0). */
 void xgo_sincos(xgo_bam_t a, xgo_q30_t *sin_out, xgo_q30_t *cos_out)
 {
-    uint32_t quadrant = a >> 30;
-    uint32_t r = a & 0x3FFFFFFFu;           /* position in the quadrant */
-    uint32_t k = (r + (1u << 22)) >> 23;    /* nearest table node, 0..128 */
-    int32_t d = (int32_t)r - (int32_t)(k << 23); /* |d| <= 2^22 BAM */
-    /* The offset from the node in Q34 radians: |dr| <= pi/512 * 2^34 ~ 1.1e8.
-     * Q34 keeps the correction terms 16x finer than the Q30 result. */
-    int32_t dr = (int32_t)rshift_round((int64_t)(d * PI_2_Q34_HIGH) * ((int64_t)1 << 32) +
-                                           xgo_mul_wide(d, PI_2_Q34_LOW), 30);
-    int32_t half_d2 = (int32_t)rshift_round(xgo_mul_wide(dr, dr), 35);   /* dr^2/2, <= 3.2e5 */
-    int32_t d3_2 = (int32_t)rshift_round(xgo_mul_wide(dr, half_d2), 34); /* dr^3/2, <= 1.1e3 */
-    /* sin(dr) = dr - dr^3/6 (next term < 1e-13),
-     * cos(dr) = 1 - dr^2/2 (next term dr^4/24 < 6e-11 = 0.07 LSB) */
-    int32_t sd = dr - div3_small(d3_2); /* |d3_2| <= 1.1e3 */
-    int32_t s0 = sin_tab[k];
-    int32_t c0 = sin_tab[128u - k];
-    /* angle addition: sin(a+d) = s0 cos d + c0 sin d
-     *                 cos(a+d) = c0 cos d - s0 sin d
-     * with cos d = 1 - half_d2; all products < 2^58 (32-bit factors) */
-    int32_t s = clamp_unit((int32_t)(s0 + rshift_round(xgo_mul_wide(c0, sd) - xgo_mul_wide(s0, half_d2), 34)));
-    int32_t c = clamp_unit((int32_t)(c0 - rshift_round(xgo_mul_wide(s0, sd) + xgo_mul_wide(c0, half_d2), 34)));
+    const uint32_t quadrant = a >> 30;
+    const uint32_t r = a & 0x3FFFFFFFu;        /* position in the quadrant */
+    const uint32_t k = (r + (1u << 22)) >> 23; /* nearest table node, 0..128 */
+    const int32_t d = (int32_t)r - (int32_t)(k << 23); /* |d| <= 2^22 BAM */
+    /* d in radians, Q34: 25 d + d (8 pi - 25), the fraction in two 16-bit
+     * pieces of d (d = 256 dh + dl); |dr| <= pi/512 * 2^34 < 2^26.7 */
+    const int32_t dh = d >> 8, dl = d & 0xFF;
+    const int32_t dr = 25 * d + ((dh * EIGHT_PI_FRAC_Q19 + (1 << 10)) >> 11) +
+                       ((dl * EIGHT_PI_FRAC_Q19) >> 19);
+    /* d^2/2 in Q30 (<= 2^14.3) from |dr| in Q23 (< 2^15.7: the square fits 32 bits unsigned) */
+    const uint32_t u = ((uint32_t)(dr < 0 ? -dr : dr) + (1u << 10)) >> 11;
+    const int32_t half_d2 = (int32_t)((u * u + (1u << 16)) >> 17);
+    /* d^3/6 = d * (d^2/2) / 3 in Q34: (dr in Q22) * half_d2 -> Q52 */
+    const int32_t d3_2 = ((dr >> 12) * half_d2 + (1 << 17)) >> 18;
+    const int32_t sd = dr - (d3_2 < 0 ? -div3_small(-d3_2) : div3_small(d3_2)); /* Q34 */
+    const int32_t s0 = sin_tab[k], c0 = sin_tab[128u - k];
+    /* 1 - cos d terms: Q16 table value times half_d2, Q46 -> Q30 */
+    const int32_t s_h = (int32_t)(((uint32_t)s0 >> 14) * (uint32_t)half_d2 >> 16);
+    const int32_t c_h = (int32_t)(((uint32_t)c0 >> 14) * (uint32_t)half_d2 >> 16);
+    /* sin d terms: Q30 * Q34 = Q64 -> Q30 */
+    const int32_t c_s = (int32_t)((xgo_mul_wide(c0, sd) + ((int64_t)1 << 33)) >> 34);
+    const int32_t s_s = (int32_t)((xgo_mul_wide(s0, sd) + ((int64_t)1 << 33)) >> 34);
+    const int32_t s = clamp_unit(s0 + c_s - s_h);
+    const int32_t c = clamp_unit(c0 - s_s - c_h);
     int32_t so, co;
     switch (quadrant) {
     case 0u:
@@ -443,47 +438,38 @@ xgo_q30_t xgo_cos(xgo_bam_t a)
 
 /* ------------------------------------------------------------ atan2 */
 
-#define CORDIC_ITERS 8 /* unrolled below: CORDIC_STEP(1..8) */
-#define CORDIC_Z_SHIFT 8 /* the angle accumulates in 2^-8 BAM */
-
-/* atan(2^-i) in 2^-8 BAM units (2^40 per turn), i = 1..CORDIC_ITERS: the
- * extra bits keep the table's rounding out of the result. */
-static const int64_t cordic_atan_tab[CORDIC_ITERS + 1] = {
-    0, /* i = 0 unused: the octant reduction leaves at most 45 degrees */
-    81134951838LL, 42869480287LL, 21761217566LL, 10922836750LL,
-    5466743129LL, 2734038620LL, 1367102738LL, 683561799LL,
+/* atan(i / 32) in BAM, i = 0..32 (0 .. 45 degrees). */
+static const uint32_t atan_tab[33] = {
+    0, 21354465, 42667331, 63897482, 85004756, 105950391, 126697423, 147211045, 167458907,
+    187411349, 207041579, 226325781, 245243172, 263775993, 281909457, 299631651, 316933406,
+    333808132, 350251643, 366261957, 381839095, 396984877, 411702716, 425997422, 439875013,
+    453342536, 466407904, 479079736, 491367227, 503280012, 514828063, 526021581, 536870912,
 };
 
-/* 2^40 / (2 pi): radians -> 2^-8 BAM, for the final residual. */
-#define RAD_TO_Z 174992710548LL
-#define RAD_TO_Z_LOW 3194018708u /* RAD_TO_Z - 40 * 2^32 */
+/* 4 / pi - 1 in Q16 (17906.99): radians -> BAM is * 2^32 / (2 pi), for a
+ * value in Q29 that is * 4 / pi. */
+#define FOUR_PI_FRAC_Q16 17907
 
-/* One CORDIC vectoring step: rotate (x, y) toward the x axis by
- * atan(2^-i), accumulating the angle. Shifts are rounded so the truncation
- * error does not drift in one direction. */
-#define CORDIC_STEP(i)                                           \
-    do {                                                         \
-        int32_t dx_ = (y + (1 << ((i) - 1))) >> (i);             \
-        int32_t dy_ = (x + (1 << ((i) - 1))) >> (i);             \
-        if (y >= 0) {                                            \
-            x += dx_;                                            \
-            y -= dy_;                                            \
-            z += cordic_atan_tab[i];                             \
-        } else {                                                 \
-            x -= dx_;                                            \
-            y += dy_;                                            \
-            z -= cordic_atan_tab[i];                             \
-        }                                                        \
-    } while (0)
+/* round(x / 32) for 0 <= x <= 2^30: the nearest node index, from the
+ * ratio's top bits (any node near the ratio would do; the nearest keeps the
+ * residual within 1/64). ux in [2^24, 2^25], uy <= ux. */
+static uint32_t nearest_node(uint32_t uy, uint32_t ux)
+{
+#if XGO_CORE_NARROW_CPU
+    uint32_t n = (uy << 5) + (ux >> 1), q = 0;
+    int b;
+    for (b = 5; b >= 0; --b) { /* the quotient is at most 32: 6 bits */
+        if (n >= ux << b) {
+            n -= ux << b;
+            q |= 1u << b;
+        }
+    }
+    return q;
+#else
+    return ((uy << 5) + (ux >> 1)) / ux;
+#endif
+}
 
-/* round(n * 2^32 / d) (ties away from zero) for n * 2^7 < d < 2^31: the
- * CORDIC residual y/x. Restoring division, one quotient bit per step in
- * 32 bits (the remainder stays below d < 2^31, so doubling it cannot
- * overflow); the quotient is below 2^25, so the first 7 of its 32 bits are
- * zero and n starts pre-shifted by 7: on a core without a divider
- * (Cortex-M0). With a 32-bit divider, two 16-bit digit steps (div_shifted);
- * on a 64-bit host one instruction. All exact: the same result, and no
- * libgcc 64-bit division (none may run in a tick, docs/mcu.md). */
 #if !XGO_CORE_DIV64_NATIVE && !XGO_CORE_NARROW_CPU
 /* floor(n * 2^32 / d) for n < d < 2^31, and its remainder, on a core that
  * divides 32-bit numbers in hardware but not 64-bit ones (Cortex-M3/M4):
@@ -519,74 +505,64 @@ static uint32_t div_shifted(uint32_t n, uint32_t d, uint32_t *rem)
 }
 #endif
 
-static uint32_t frac_q32(uint32_t n, uint32_t d)
+/* floor(m * 2^29 / e) for m * 2^6 <= e < 2^31: the residual ratio, at most
+ * 2^23. Exact on every target (same result): one instruction on a 64-bit
+ * host, two 16-bit digit steps with a 32-bit divider, a 24-step restoring
+ * division without one (the remainder stays below e < 2^31). */
+static uint32_t residual_q29(uint32_t m, uint32_t e)
 {
 #if XGO_CORE_DIV64_NATIVE
-    return (uint32_t)((((uint64_t)n << 32) + (d >> 1)) / d);
+    return (uint32_t)(((uint64_t)m << 29) / e);
 #elif XGO_CORE_NARROW_CPU
-    uint32_t r = n << 7; /* < d */
+    uint32_t r = m << 5; /* < e: the quotient's top bits are zero */
     uint32_t q = 0;
     int i;
-    for (i = 0; i < 25; ++i) {
+    for (i = 0; i < 24; ++i) {
         r <<= 1;
         q <<= 1;
-        if (r >= d) {
-            r -= d;
+        if (r >= e) {
+            r -= e;
             q |= 1u;
         }
     }
-    /* round half away from zero: (n * 2^32 + floor(d/2)) / d */
-    if (r >= d - (d >> 1)) {
-        ++q;
-    }
     return q;
 #else
-    uint32_t r;
-    const uint32_t q = div_shifted(n, d, &r);
-    return r >= d - (d >> 1) ? q + 1u : q;
+    uint32_t rem;
+    return div_shifted(m, e, &rem) >> 3;
 #endif
 }
 
-/* Angle of (ux, uy) with ux >= uy > 0 and ux in [2^29, 2^30); result in
- * BAM, 0..2^29 (0..45 degrees). */
-static uint32_t cordic_octant(uint32_t ux, uint32_t uy)
+/* Angle of (ux, uy), ux >= uy > 0, ux in [2^24, 2^25]: BAM 0..2^29. The
+ * vector is turned back by the nearest table angle atan(i/32) exactly in
+ * integers (multiplied by (32 - i j): x' = 32 x + i y, y' = 32 y - i x),
+ * which leaves a residual e = y'/x' within +-1/64; atan e = e - e^3/3 (the
+ * next term is below 2e-10 rad). */
+static uint32_t atan_octant(uint32_t ux, uint32_t uy)
 {
-    int32_t x = (int32_t)ux;
-    int32_t y = (int32_t)uy;
-    int64_t z = 0;
-    int64_t t;
-    uint64_t pz;
-    /* i = 0 (45 degrees) is not needed: the octant reduction leaves at
-     * most 45 degrees and steps 1.. converge over 54.9 degrees. */
-    CORDIC_STEP(1);
-    CORDIC_STEP(2);
-    CORDIC_STEP(3);
-    CORDIC_STEP(4);
-    CORDIC_STEP(5);
-    CORDIC_STEP(6);
-    CORDIC_STEP(7);
-    CORDIC_STEP(8);
-    /* What is left is the angle of (x, y), below atan(2^-CORDIC_ITERS):
-     * finish with atan(t) = t - t^3/3 (the next term, t^5/5, is below
-     * 2e-13 rad), t = y/x in Q32. */
-    {
-        uint32_t ut = frac_q32(y < 0 ? 0u - (uint32_t)y : (uint32_t)y, (uint32_t)x);
-        /* t^3 in Q32 from the top 15 bits of |t| (< 2^24 * 1.01, so u < 2^15
-         * and u^2, w * u fit 32 bits): within about one unit of Q32, and the
-         * term itself is at most 2^8 units (0.0004 BAM per unit). */
-        uint32_t u = ut >> 9;
-        uint32_t w = (u * u) >> 14; /* ~ t^2 / 2^32 */
-        uint32_t c = (w * u) >> 23; /* ~ t^3 / 2^64 */
-        ut -= ((c + 1u) * 21846u) >> 16; /* (c + 1) / 3, exact for c < 2^15 */
-        /* t * RAD_TO_Z (< 2^63) as |t| * 40 * 2^32 + |t| * RAD_TO_Z_LOW:
-         * 32-bit factors (|t| * 40 < 2^31) */
-        pz = ((uint64_t)(ut * 40u) << 32) + xgo_umul_wide(ut, RAD_TO_Z_LOW);
-        t = y < 0 ? -(int64_t)pz : (int64_t)pz;
+    const uint32_t i = nearest_node(uy, ux);
+    const int32_t ey = (int32_t)(uy << 5) - (int32_t)(i * ux); /* |ey| <= ux / 2 */
+    const uint32_t ex = (ux << 5) + i * uy;                       /* [2^29, 2^31) */
+    const uint32_t m = ey < 0 ? (uint32_t)-ey : (uint32_t)ey;
+    uint32_t q, u, w, c, ah, al, b;
+    if (m == 0u) {
+        return atan_tab[i];
     }
-    z += (t + ((int64_t)1 << 31)) >> 32;
-    return (uint32_t)((z + ((int64_t)1 << (CORDIC_Z_SHIFT - 1))) >> CORDIC_Z_SHIFT);
+    q = residual_q29(m, ex); /* e in Q29, < 2^23 */
+    /* e^3/3 in Q29 from 15-bit pieces (u = e in Q21) */
+    u = q >> 8;
+    w = (u * u) >> 15;               /* e^2 in Q27 */
+    c = (w * u) >> 19;               /* e^3 in Q29, < 2^11 */
+    q -= ((c + 1u) * 21846u) >> 16;  /* (c + 1) / 3: rounded third */
+    /* radians Q29 -> BAM: q * 4/pi = q + q * (4/pi - 1), the product in
+     * two 16-bit pieces of q */
+    ah = q >> 8;
+    al = q & 0xFFu;
+    b = q + ((ah * FOUR_PI_FRAC_Q16 + (1u << 7)) >> 8) + ((al * FOUR_PI_FRAC_Q16) >> 16);
+    return ey < 0 ? atan_tab[i] - b : atan_tab[i] + b;
 }
 
+/* Largest component scaled to [2^24, 2^25] (exact when scaled up, rounded
+ * when scaled down: 25 bits of the ratio kept). */
 static xgo_bam_t atan2_mag(uint32_t ux, uint32_t uy, int xneg, int yneg)
 {
     int swap = uy > ux;
@@ -605,19 +581,17 @@ static xgo_bam_t atan2_mag(uint32_t ux, uint32_t uy, int xneg, int yneg)
     } else if (uy == ux) {
         a = XGO_BAM_90 / 2u; /* on a diagonal: exact */
     } else {
-        /* Normalise so the larger component is in [2^29, 2^30): full
-         * precision, and headroom for the CORDIC gain (1.16 * sqrt 2 < 2). */
         n = clz32(ux);
-        if (n > 2u) {
-            ux <<= n - 2u;
-            uy <<= n - 2u;
-        } else if (n < 2u) {
-            /* rounded (in 64 bits: ux + half may pass 2^32) */
-            unsigned k = 2u - n;
-            ux = (uint32_t)(((uint64_t)ux + (1u << (k - 1u))) >> k);
-            uy = (uint32_t)(((uint64_t)uy + (1u << (k - 1u))) >> k);
+        if (n > 7u) {
+            ux <<= n - 7u;
+            uy <<= n - 7u;
+        } else if (n < 7u && ux > (1u << 25)) {
+            /* rounded: (v >> 1) + half cannot pass 2^32 */
+            unsigned k = 7u - n;
+            ux = ((ux >> 1) + (1u << (k - 1u))) >> (k - 1u);
+            uy = ((uy >> 1) + (1u << (k - 1u))) >> (k - 1u);
         }
-        a = cordic_octant(ux, uy);
+        a = atan_octant(ux, uy);
     }
     if (swap) {
         a = XGO_BAM_90 - a;
@@ -662,10 +636,10 @@ xgo_bam_t xgo_atan2_64(int64_t y, int64_t x)
     uint64_t uy = abs_u64(y);
     uint64_t m = ux > uy ? ux : uy;
     unsigned k = 0;
-    /* Scale both down, once and rounded, until the larger is below 2^30:
-     * the ratio keeps 30 bits and atan2_mag needs no further shift. */
-    if (m >= ((uint64_t)1 << 30)) {
-        k = xgo_bit_length(m) - 30u;
+    /* Scale both down, once and rounded, until the larger is at most 2^25
+     * (atan2_mag's working range: no second rounding there). */
+    if (m >= ((uint64_t)1 << 25)) {
+        k = xgo_bit_length(m) - 25u;
     }
     if (k > 0u) {
         ux = rshift_round_u64(ux, k);

@@ -5,7 +5,8 @@
  * The board's motion core must run on an MCU without an FPU (and, on a
  * Cortex-M0, without a divider), so everything here is integer arithmetic.
  * 64-bit products are used where 32 bits cannot hold the precision; the only
- * divisions are in xgo_div_q / xgo_muldiv and one per xgo_atan2.
+ * divisions are in xgo_div_q / xgo_muldiv, two small ones per xgo_atan2 and
+ * one per xgo_isqrt64.
  *
  * Formats (docs/fixed-point.md has the reasoning and the measured errors):
  *
@@ -19,13 +20,16 @@
  *   general        xgo_q16_t: int32_t Q16.16, 1.0 = 65536.
  *
  * Methods (reasons in docs/fixed-point.md): sin/cos use a 129-entry
- * quarter-wave table plus a 3rd-order angle-addition correction; atan2 is 8
- * CORDIC vectoring steps (shifts and adds only) finished by atan(t) = t -
- * t^3/3 on the small residual; asin/acos reduce to atan2; sqrt is a table seed made
- * exact by compares (one Newton step above 32 bits). The maximum errors stated below were measured
- * against libm (or exact integer arithmetic) by test/test_fixed.c over dense
- * sweeps of each whole domain plus every extreme; docs/fixed-point.md has
- * them with the cost of each function.
+ * quarter-wave table plus a 3rd-order angle-addition correction (two
+ * 32 x 32 -> 64-bit products, the rest 16-bit); atan2 turns the vector back
+ * by the nearest of 33 table angles atan(i/32) (exactly, in integers) and
+ * finishes with atan(e) = e - e^3/3 on the residual |e| <= 1/64 (one
+ * division of 24 quotient bits); asin/acos reduce to atan2; sqrt is a
+ * table seed made exact by compares (one Newton step above 32 bits). The
+ * maximum errors stated below were measured against libm (or exact integer
+ * arithmetic) by test/test_fixed.c over dense sweeps of each whole domain
+ * plus every extreme; docs/fixed-point.md has them with the cost of each
+ * function.
  *
  * Nothing here overflows, divides by zero or has undefined behaviour for any
  * argument value: results saturate, and each function documents what it
@@ -126,8 +130,8 @@ int32_t xgo_wrap_mdeg(int32_t mdeg);
 /* ------------------------------------------------------------ trigonometry */
 
 /* sin and cos of a binary angle, Q30, clamped to [-1, 1]. Exact at 0, 90,
- * 180, 270 degrees. Measured max error over all angles: 1.08 LSB of Q30
- * (1.0e-9); asserted bound 1.25 LSB. */
+ * 180, 270 degrees. Measured max error over all angles: 2.82 LSB of Q30
+ * (2.6e-9); asserted bound 3.5 LSB. */
 void xgo_sincos(xgo_bam_t a, xgo_q30_t *sin_out, xgo_q30_t *cos_out);
 xgo_q30_t xgo_sin(xgo_bam_t a);
 xgo_q30_t xgo_cos(xgo_bam_t a);
@@ -135,20 +139,20 @@ xgo_q30_t xgo_cos(xgo_bam_t a);
 /* Angle of the vector (x, y), any int32 pair (x, y are in the same unit).
  * Returns a binary angle; read it with xgo_bam_signed / xgo_bam_to_mdeg
  * (-180 degrees for y == 0, x < 0). atan2(0, 0) == 0; exact on the axes and
- * diagonals. Measured max error over all inputs: 3.8 LSB of BAM (5.6e-9 rad,
- * 3.2e-7 degree) relative to the exact angle of the integer pair; asserted
- * bound 4 LSB. */
+ * diagonals. Measured max error over all inputs: 45.3 LSB of BAM (6.6e-8
+ * rad, 3.8e-6 degree) relative to the exact angle of the integer pair (the
+ * larger component keeps 25 bits); asserted bound 64 LSB. */
 xgo_bam_t xgo_atan2(int32_t y, int32_t x);
 
 /* Same for 64-bit components (both are scaled down together first, so the
- * angle keeps 30 bits of relative precision). Measured max error 3.6 LSB of
- * BAM; asserted bound 4 LSB. */
+ * angle keeps 25 bits of relative precision). Measured max error 25.8 LSB of
+ * BAM; asserted bound 64 LSB. */
 xgo_bam_t xgo_atan2_64(int64_t y, int64_t x);
 
 /* asin / acos of a Q30 value; arguments outside [-1, 1] are clamped.
  * asin returns [-90, 90] degrees (as a signed binary angle), acos [0, 180];
- * exact at -1, 0, 1. Measured max error: 2.9 LSB of BAM (4.2e-9 rad)
- * relative to libm on the same Q30 input; asserted bound 3.5 LSB. */
+ * exact at -1, 0, 1. Measured max error: 39.4 LSB of BAM (5.8e-8 rad)
+ * relative to libm on the same Q30 input; asserted bound 64 LSB. */
 xgo_bam_t xgo_asin(xgo_q30_t x);
 xgo_bam_t xgo_acos(xgo_q30_t x);
 
