@@ -240,8 +240,8 @@ typedef struct xgo_motion_s {
     int32_t stab_mdeg[2];     /* self-stabilisation roll, pitch correction */
     uint32_t nv_changes;      /* counts changes of non-volatile data */
     uint8_t contact;          /* bit leg: foot on the ground this tick */
-    xgo_vec3_t feet_body_um[XGO_LEG_COUNT]; /* measured: FK of the actual joints,
-                                               body frame (z up) */
+    uint8_t feet_as_solved;   /* the joints are where the last IK put them, all feet
+                                 reached: the feet are ik_cache's (xgo_motion_feet_body) */
     xgo_odometry_t odom;      /* world pose from the planted feet */
     xgo_heading_t heading;    /* turn to heading (0x3F) and its origin (0x06) */
     xgo_inertial_t inertial;  /* accelerometer and gyroscope (0x65) */

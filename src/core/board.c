@@ -351,7 +351,7 @@ void xgo_board_joint_limits_mdeg(const xgo_board_t *b, unsigned joint, int32_t *
 
 void xgo_board_feet_um(const xgo_board_t *b, xgo_vec3_t out[XGO_LEG_COUNT])
 {
-    memcpy(out, b->motion.feet_body_um, sizeof b->motion.feet_body_um);
+    xgo_motion_feet_body(&b->motion, out);
 }
 
 uint8_t xgo_board_contacts(const xgo_board_t *b)

@@ -118,6 +118,17 @@ static void solve_joints(xgo_motion_t *m, const xgo_body_pose_t *pose,
 
 /* ------------------------------------------------------------ transitions */
 
+/* The feet in the body frame as the joints put them now (FK). */
+static void feet_of_joints(const xgo_motion_t *m, xgo_vec3_t body[XGO_LEG_COUNT])
+{
+    unsigned leg;
+    for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
+        xgo_vec3_t foot_leg;
+        xgo_leg_fk(m->profile, (xgo_leg_t)leg, &m->servos.angle_mdeg[XGO_JOINT_COUNT * leg], &foot_leg);
+        xgo_leg_to_body(m->profile, (xgo_leg_t)leg, &foot_leg, &body[leg]);
+    }
+}
+
 /* The feet in the machine frame as the joints put them now (FK, with this
  * tick's body pose), and which are down: those within 1 mm of the lowest. */
 static uint8_t measured_feet(const xgo_motion_t *m, xgo_vec3_t machine[XGO_LEG_COUNT])
@@ -126,11 +137,7 @@ static uint8_t measured_feet(const xgo_motion_t *m, xgo_vec3_t machine[XGO_LEG_C
     int32_t low = INT32_MAX;
     uint8_t contact = 0;
     unsigned leg;
-    for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
-        xgo_vec3_t foot_leg;
-        xgo_leg_fk(m->profile, (xgo_leg_t)leg, &m->servos.angle_mdeg[XGO_JOINT_COUNT * leg], &foot_leg);
-        xgo_leg_to_body(m->profile, (xgo_leg_t)leg, &foot_leg, &body[leg]);
-    }
+    feet_of_joints(m, body);
     xgo_body_to_machine(&m->pose, body, machine);
     for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
         low = machine[leg].z < low ? machine[leg].z : low;
@@ -438,24 +445,18 @@ static void measure_feet(xgo_motion_t *m, int contact_known)
     xgo_vec3_t machine[XGO_LEG_COUNT];
     int32_t low = INT32_MAX;
     unsigned leg;
-    if (contact_known && m->ik_cache.valid && m->ik_cache.projected == 0 &&
-        memcmp(m->servos.angle_mdeg, m->ik_cache.q_mdeg, sizeof m->ik_cache.q_mdeg) == 0) {
-        /* The joints are where this tick's IK put them and every foot was
-         * reachable: the feet are where they were asked to be (FK of these
-         * angles agrees within the IK's 2.4 um), so spare the FK. */
-        for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
-            xgo_leg_to_body(m->profile, (xgo_leg_t)leg, &m->ik_cache.feet_leg[leg],
-                            &m->feet_body_um[leg]);
-            machine[leg] = m->ik_cache.feet[leg];
-        }
+    /* The joints where this tick's IK put them and every foot reachable:
+     * the feet are where they were asked to be (FK of these angles agrees
+     * within the IK's 2.4 um), so spare the FK. */
+    m->feet_as_solved = (uint8_t)(contact_known && m->ik_cache.valid && m->ik_cache.projected == 0 &&
+                                  memcmp(m->servos.angle_mdeg, m->ik_cache.q_mdeg,
+                                         sizeof m->ik_cache.q_mdeg) == 0);
+    if (m->feet_as_solved) {
+        memcpy(machine, m->ik_cache.feet, sizeof machine);
     } else {
-        for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
-            xgo_vec3_t foot_leg;
-            xgo_leg_fk(m->profile, (xgo_leg_t)leg, &m->servos.angle_mdeg[XGO_JOINT_COUNT * leg],
-                       &foot_leg);
-            xgo_leg_to_body(m->profile, (xgo_leg_t)leg, &foot_leg, &m->feet_body_um[leg]);
-        }
-        xgo_body_to_machine(&m->pose, m->feet_body_um, machine);
+        xgo_vec3_t body[XGO_LEG_COUNT];
+        feet_of_joints(m, body);
+        xgo_body_to_machine(&m->pose, body, machine);
     }
     for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
         low = machine[leg].z < low ? machine[leg].z : low;
@@ -469,6 +470,21 @@ static void measure_feet(xgo_motion_t *m, int contact_known)
         }
     }
     xgo_odometry_update(&m->odom, machine, m->contact);
+}
+
+/* Body-frame feet for observers, worked out when asked (not every tick: the
+ * control loop needs only the machine frame's), from what measure_feet
+ * used: the IK's feet or the FK of the joints. */
+void xgo_motion_feet_body(const xgo_motion_t *m, xgo_vec3_t out[XGO_LEG_COUNT])
+{
+    unsigned leg;
+    if (!m->feet_as_solved) {
+        feet_of_joints(m, out);
+        return;
+    }
+    for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
+        xgo_leg_to_body(m->profile, (xgo_leg_t)leg, &m->ik_cache.feet_leg[leg], &out[leg]);
+    }
 }
 
 /* ------------------------------------------------------------ publish */

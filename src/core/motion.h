@@ -63,6 +63,10 @@ void xgo_motion_tick(xgo_motion_t *m, xgo_regs_t *regs);
  * the joints read where they are from power-up. */
 void xgo_motion_publish(const xgo_motion_t *m, xgo_regs_t *r);
 
+/* Where the feet are, body frame (z up): the FK of the joints as they are
+ * after the last tick (xgo_board_feet_um). */
+void xgo_motion_feet_body(const xgo_motion_t *m, xgo_vec3_t out[XGO_LEG_COUNT]);
+
 #ifdef __cplusplus
 }
 #endif
