@@ -182,6 +182,24 @@ static void test_action_runs(void)
     TEST_ASSERT_EQUAL_UINT8(0, xgo_board_action(&board));
 }
 
+/* Names only where they are built in; the lookups answer either way. */
+static void test_names(void)
+{
+    if (XGO_WITH_NAMES) {
+        TEST_ASSERT_EQUAL_STRING("vx", xgo_reg_name(XGO_REG_VX));
+        TEST_ASSERT_EQUAL_STRING("sit", xgo_action_name(XGO_ACTION_SIT));
+        TEST_ASSERT_EQUAL_STRING("frames_ok", xgo_diag_name(XGO_DIAG_FRAMES_OK));
+    } else {
+        TEST_ASSERT_EQUAL_STRING("", xgo_reg_name(XGO_REG_VX));
+        TEST_ASSERT_EQUAL_STRING("", xgo_action_name(XGO_ACTION_SIT));
+        TEST_ASSERT_EQUAL_STRING("", xgo_diag_name(XGO_DIAG_FRAMES_OK));
+    }
+    TEST_ASSERT_EQUAL_STRING("-", xgo_reg_name(0x11)); /* no register there */
+    TEST_ASSERT_NULL(xgo_action_name(0));
+    TEST_ASSERT_EQUAL_STRING("unknown", xgo_diag_name(XGO_DIAG_COUNT));
+    TEST_ASSERT_EQUAL_UINT8(XGO_REG_VX, xgo_reg_find(XGO_REG_VX)->addr);
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -191,5 +209,6 @@ int main(void)
     RUN_TEST(test_walk_without_odometry_and_inertial);
     RUN_TEST(test_spec_read_reply);
     RUN_TEST(test_action_runs);
+    RUN_TEST(test_names);
     return UNITY_END();
 }

@@ -52,7 +52,11 @@
  *   Attitude (0x62..0x64) stays: the heading and the self-levelling use it.
  * XGO_WITH_ODOMETRY: the world pose from the planted feet (an emulator's
  *   observer, xgo_board_world_pose): without it the pose stays 0, 0, 0.
- *   The inertial model needs it. */
+ *   The inertial model needs it.
+ * XGO_WITH_NAMES: the names of registers, actions and counters, for traces
+ *   and tools (the register table's name field, xgo_reg_name,
+ *   xgo_action_name, xgo_diag_name): without them the table has no name
+ *   field and each of these returns "" where it would return a name. */
 #ifndef XGO_WITH_LITE
 #define XGO_WITH_LITE 1
 #endif
@@ -64,6 +68,9 @@
 #endif
 #ifndef XGO_WITH_ODOMETRY
 #define XGO_WITH_ODOMETRY 1
+#endif
+#ifndef XGO_WITH_NAMES
+#define XGO_WITH_NAMES 1
 #endif
 #if XGO_WITH_INERTIAL && !XGO_WITH_ODOMETRY
 #error "XGO_WITH_INERTIAL needs XGO_WITH_ODOMETRY (the body's path comes from it)"

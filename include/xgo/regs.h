@@ -219,7 +219,9 @@ typedef struct xgo_reg_desc_s {
     uint8_t initial;
     uint8_t valid; /* xgo_valid_t */
     uint8_t lo, hi;
+#if XGO_WITH_NAMES /* xgo/config.h */
     const char *name;
+#endif
 } xgo_reg_desc_t;
 
 /* The descriptor table and lookups. */

@@ -59,7 +59,9 @@ enum {
 
 typedef struct action_s {
     const int8_t *frames; /* nframes x (1 + nch) cells */
+#if XGO_WITH_NAMES
     const char *name;
+#endif
     uint32_t mask;      /* channels present */
     uint8_t nch;        /* channels in mask */
     uint8_t nframes;
@@ -413,9 +415,15 @@ static const int8_t k_reset[] = {
 };
 CHECK_TABLE(k_reset, RESET_CH);
 
+#if XGO_WITH_NAMES
+#define ACTION_NAME_(nm) nm,
+#else
+#define ACTION_NAME_(nm)
+#endif
 #define ACTION(t, m, lf, ll, reps, secs, nm)                                                      \
-    { t, nm, (m), (uint8_t)NCH(m), (uint8_t)(sizeof(t) / (1u + NCH(m))), (lf), (ll), (reps), (secs) }
-#define NO_ACTION { NULL, NULL, 0ul, 0u, 0u, 0u, 0u, 1u, 0u }
+    { t, ACTION_NAME_(nm) (m), (uint8_t)NCH(m), (uint8_t)(sizeof(t) / (1u + NCH(m))), (lf), (ll), \
+      (reps), (secs) }
+#define NO_ACTION { NULL, ACTION_NAME_(NULL) 0ul, 0u, 0u, 0u, 0u, 1u, 0u }
 
 static const action_t k_actions[XGO_ACTION_LAST + 1u] = {
     NO_ACTION,
@@ -734,7 +742,11 @@ uint32_t xgo_action_duration_ticks(uint8_t id)
 const char *xgo_action_name(uint8_t id)
 {
     const action_t *a = lookup(id);
+#if XGO_WITH_NAMES
     return a != NULL ? a->name : NULL;
+#else
+    return a != NULL ? "" : NULL;
+#endif
 }
 
 uint8_t xgo_action_next_in_cycle(uint8_t id)

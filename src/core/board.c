@@ -24,15 +24,21 @@ static const struct {
     {"W-EMU-0.1", XGO_VERSION_MINI2},
 };
 
+#if XGO_WITH_NAMES
 static const char *const k_diag_names[XGO_DIAG_COUNT] = {
 #define DIAG_NAME_(id, name, member) #name,
     XGO_DIAG_LIST(DIAG_NAME_)
 #undef DIAG_NAME_
 };
+#endif
 
 const char *xgo_diag_name(xgo_diag_t which)
 {
+#if XGO_WITH_NAMES
     return (unsigned)which < XGO_DIAG_COUNT ? k_diag_names[which] : "unknown";
+#else
+    return (unsigned)which < XGO_DIAG_COUNT ? "" : "unknown";
+#endif
 }
 
 void xgo_board_default_config(xgo_board_config_t *cfg)

@@ -17,10 +17,16 @@
 /* Flags column: 0 or a XGO_REGF_ suffix. */
 #define XGO_REGF_0 0u
 
+#if XGO_WITH_NAMES
+#define REG_NAME_(nm) , nm
+#else
+#define REG_NAME_(nm)
+#endif
+
 static const xgo_reg_desc_t k_regs[] = {
 #define XGO_REG_DESC_(id, a, w, acc, fl, init, v, l, h, nm)                                  \
     {(uint8_t)(a), (uint8_t)(w), XGO_ACCESS_##acc, (uint8_t)(XGO_REGF_##fl + 0), (uint8_t)(init), \
-     (uint8_t)XGO_VALID_##v, (uint8_t)(l), (uint8_t)(h), nm},
+     (uint8_t)XGO_VALID_##v, (uint8_t)(l), (uint8_t)(h) REG_NAME_(nm)},
     XGO_REG_LIST(XGO_REG_DESC_)
 #undef XGO_REG_DESC_
 };
@@ -74,7 +80,11 @@ const xgo_reg_desc_t *xgo_reg_find(uint8_t addr)
 const char *xgo_reg_name(uint8_t addr)
 {
     const xgo_reg_desc_t *d = xgo_reg_find(addr);
+#if XGO_WITH_NAMES
     return d != NULL ? d->name : "-";
+#else
+    return d != NULL ? "" : "-";
+#endif
 }
 
 int xgo_reg_value_valid(const xgo_reg_desc_t *d, uint8_t v)
