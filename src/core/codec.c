@@ -113,10 +113,11 @@ void xgo_joints_to_bytes(const xgo_profile_t *p, const int32_t q_mdeg[XGO_LEG_CO
  * b * span <= 255 (v - lo) < (b + 1) * span, two multiplies to check (every
  * product < 255 * span < 2^31). A joint moves less than one byte's worth
  * per tick, so the last byte is almost always right, which spares the
- * division (eight restoring steps on a Cortex-M0). */
+ * division: eight restoring steps on a core without a divider (Cortex-M0);
+ * with one, the check costs more instructions than it saves. */
 static uint8_t range_to_byte_near(const xgo_range_t *r, int32_t v, uint8_t guess)
 {
-    if (r->hi > r->lo && v > r->lo && v < r->hi) {
+    if (XGO_CORE_NARROW_CPU && r->hi > r->lo && v > r->lo && v < r->hi) {
         const uint32_t span = span_of(r);
         const uint32_t num = 255u * ((uint32_t)v - (uint32_t)r->lo);
         const uint32_t low = guess * span;
