@@ -142,8 +142,7 @@ void xgo_inertial_tick_sc(xgo_inertial_t *s, const int64_t body_q8[3], const xgo
 void xgo_inertial_body_position(const xgo_odometry_t *o, const xgo_body_pose_t *pose,
                                 int64_t body_q8[3], xgo_q30_t heading_sc[2])
 {
-    xgo_q30_t sh, ch;
-    xgo_sincos(o->yaw, &sh, &ch);
+    const xgo_q30_t sh = o->yaw_sc[0], ch = o->yaw_sc[1];
     /* (c x - s y) * 256 / 2^30 */
     body_q8[0] = o->x_q8 + ((xgo_mul_wide(ch, pose->x_um) - xgo_mul_wide(sh, pose->y_um) +
                              (1 << 21)) >> 22);

@@ -11,6 +11,7 @@
 void xgo_odometry_init(xgo_odometry_t *o)
 {
     memset(o, 0, sizeof *o);
+    xgo_sincos(o->yaw, &o->yaw_sc[0], &o->yaw_sc[1]);
 }
 
 static int64_t round_shift64(int64_t v, unsigned n)
@@ -75,11 +76,13 @@ static void fit_motion(const xgo_odometry_t *o, const xgo_vec3_t feet_um[XGO_LEG
 /* Move the world pose by d (in the body's frame of last tick) and dyaw. */
 static void apply_motion(xgo_odometry_t *o, const int32_t d_q8[2], int32_t dyaw)
 {
-    xgo_q30_t s, c;
-    xgo_sincos(o->yaw, &s, &c);
+    const xgo_q30_t s = o->yaw_sc[0], c = o->yaw_sc[1];
     o->x_q8 += round_shift64(xgo_mul_wide(c, d_q8[0]) - xgo_mul_wide(s, d_q8[1]), 30);
     o->y_q8 += round_shift64(xgo_mul_wide(s, d_q8[0]) + xgo_mul_wide(c, d_q8[1]), 30);
-    o->yaw += (xgo_bam_t)dyaw;
+    if (dyaw != 0) {
+        o->yaw += (xgo_bam_t)dyaw;
+        xgo_sincos(o->yaw, &o->yaw_sc[0], &o->yaw_sc[1]);
+    }
 }
 
 /* The feet have not moved on the floor plane (z does not count). */
