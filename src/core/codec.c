@@ -244,8 +244,16 @@ uint32_t xgo_mdeg_to_float32_bits(int32_t mdeg)
         num <<= 1;
         shift++;
     }
-    q = num / 1000u;
-    rem = num % 1000u;
+    /* num / 1000 in two 32-bit steps (no 64-bit division helper: about
+     * 750 bytes of flash on a Cortex-M): num < 2^44, so its top part
+     * num >> 22 < 2^22 and the remainder's next part (r << 22 | low 22
+     * bits) < 1000 * 2^22 < 2^32. */
+    {
+        const uint32_t top = (uint32_t)(num >> 22);
+        const uint32_t low = ((top % 1000u) << 22) | ((uint32_t)num & 0x3FFFFFu);
+        q = ((uint64_t)(top / 1000u) << 22) | (low / 1000u);
+        rem = low % 1000u;
+    }
     if (rem > 500u || (rem == 500u && (q & 1u) != 0)) {
         q++;
         if (q == (uint64_t)1u << 24) {
