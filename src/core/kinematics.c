@@ -47,12 +47,6 @@ static int32_t limit_bam(int32_t mdeg)
     return xgo_bam_signed(xgo_mdeg_to_bam(mdeg));
 }
 
-static int bam_in(xgo_bam_t a, int32_t lo, int32_t hi)
-{
-    int32_t s = xgo_bam_signed(a);
-    return s >= lo && s <= hi;
-}
-
 /* Clamp angle a into the arc that starts at lo and runs counter-clockwise
  * over width (< one turn): the point of the arc nearest to a on the circle
  * (the distance to a circle point grows with the angular distance). */
@@ -83,11 +77,17 @@ static uint32_t isqrt64_round(uint64_t v)
 
 typedef struct planar_s {
     int64_t l1, l2;     /* q4 */
-    int32_t g_lo, g_hi; /* geometric knee angle limits, signed BAM */
-    int32_t t_lo, t_hi; /* hip pitch limits, signed BAM */
-    /* The boundary arcs of the reachable region depend on the limits only:
+    int64_t sum_sq;     /* l1^2 + l2^2 */
+    int64_t two_l1l2;   /* 2 l1 l2, and the shift that cuts it to 30 bits */
+    unsigned d_shift;
+    const xgo_profile_t *p;
+    xgo_bam_t knee_off; /* g = x1 + knee_off */
+    /* Only a projection needs the limits as binary angles and the boundary
+     * arcs of the reachable region (they depend on the limits only):
      * computed on the first projection, reused by the second branch. */
     int arcs_ready;
+    int32_t g_lo, g_hi; /* geometric knee angle limits, signed BAM */
+    int32_t t_lo, t_hi; /* hip pitch limits, signed BAM */
     int64_t hip_r[2];    /* g at g_lo / g_hi: radius of the foot's circle about the hip, q4 */
     xgo_bam_t hip_a[2];  /* and the foot's u-angle past the thigh */
     int64_t knee_x[2], knee_h[2]; /* t2 at t_lo / t_hi: the knee, q4 */
@@ -118,7 +118,12 @@ static void consider(candidate_t *best, int64_t px, int64_t ph, int64_t x, int64
 
 static void planar_arcs(planar_t *pl)
 {
+    const xgo_range_t *knee = &pl->p->joint_mdeg[XGO_JOINT_KNEE], *hip = &pl->p->joint_mdeg[XGO_JOINT_HIP];
     int side;
+    pl->g_lo = xgo_bam_signed(xgo_mdeg_to_bam(knee->lo) + pl->knee_off);
+    pl->g_hi = xgo_bam_signed(xgo_mdeg_to_bam(knee->hi) + pl->knee_off);
+    pl->t_lo = limit_bam(hip->lo);
+    pl->t_hi = limit_bam(hip->hi);
     for (side = 0; side < 2; ++side) {
         /* g fixed at a limit: foot on a circle about the hip */
         int32_t gl = side ? pl->g_hi : pl->g_lo;
@@ -180,110 +185,130 @@ static void planar_project(planar_t *pl, int64_t x, int64_t h, xgo_bam_t *g, xgo
     *t2 = best.t2;
 }
 
-/* In-plane IK for (x, h) in q4. Returns 1 if the target had to be projected. */
-static int planar_ik(planar_t *pl, int64_t x, int64_t h, xgo_bam_t *g_out, xgo_bam_t *t2_out)
+typedef struct leg_solution_s {
+    xgo_bam_t phi, g, t2;
+    int32_t q[XGO_JOINT_COUNT]; /* the same in mdeg (knee without the offset) */
+    int projected;
+} leg_solution_t;
+
+/* The joint angle in mdeg, and whether it is within the joint's limits.
+ * The rounded mdeg decide unless they land on a limit; there the binary
+ * angle is compared with the limit's (exactly as if every limit had been
+ * converted): no conversion of the limits on the way of most targets. */
+static int joint_in(const planar_t *pl, unsigned joint, xgo_bam_t a, int32_t *mdeg)
 {
-    int64_t r2 = x * x + h * h;
-    int64_t n = r2 - pl->l1 * pl->l1 - pl->l2 * pl->l2;
-    int64_t d = 2 * pl->l1 * pl->l2;
-    unsigned k;
-    int64_t dn, nn;
+    const xgo_range_t *r = &pl->p->joint_mdeg[joint];
+    *mdeg = xgo_bam_to_mdeg(a);
+    if (*mdeg == r->lo) {
+        return xgo_bam_signed(a) >= limit_bam(r->lo);
+    }
+    if (*mdeg == r->hi) {
+        return xgo_bam_signed(a) <= limit_bam(r->hi);
+    }
+    return *mdeg > r->lo && *mdeg < r->hi;
+}
+
+/* In-plane IK for (x, h) in q4 (|x|, |h| < 2^26). Returns 1 if the target
+ * had to be projected. */
+static int planar_ik(planar_t *pl, int32_t x, int32_t h, leg_solution_t *s)
+{
+    const int64_t r2 = xgo_mul_wide(x, x) + xgo_mul_wide(h, h);
+    const int64_t n = r2 - pl->sum_sq, d = pl->two_l1l2;
+    int32_t dn, nn;
     uint32_t cn;
-    xgo_bam_t g, t2;
     if (n > d || n < -d) {
-        planar_project(pl, x, h, g_out, t2_out);
+        planar_project(pl, x, h, &s->g, &s->t2);
         return 1;
     }
-    /* sin g = n / d, cos g = sqrt((d - n)(d + n)) / d; scale n and d to 30
-     * bits so the product fits 64 bits (relative precision 2^-30). */
-    k = xgo_bit_length((uint64_t)d);
-    k = k > 30u ? k - 30u : 0u;
-    dn = d >> k;
-    nn = n >> k;
-    if (nn > dn) {
-        nn = dn;
-    }
-    if (nn < -dn) {
-        nn = -dn;
-    }
-    cn = isqrt64_round(xgo_umul_wide((uint32_t)(dn - nn), (uint32_t)(dn + nn))); /* each <= 2^31 */
-    g = xgo_atan2((int32_t)nn, (int32_t)cn);
+    /* sin g = n / d, cos g = sqrt((d - n)(d + n)) / d; n and d scaled to
+     * 30 bits so the product fits 64 bits (relative precision 2^-30). */
+    dn = (int32_t)(d >> pl->d_shift);
+    nn = (int32_t)(n >> pl->d_shift);
+    nn = nn > dn ? dn : (nn < -dn ? -dn : nn);
+    cn = isqrt64_round(xgo_umul_wide((uint32_t)(dn - nn), (uint32_t)(dn + nn))); /* < 2^30 */
+    s->g = xgo_atan2(nn, (int32_t)cn);
     /* t2 = u-angle of the foot (x, h) minus the foot's angle past the thigh,
      * the u-angle of (a, b) = (L2 cos g, L1 + L2 sin g) (scaled by dn). As
      * complex numbers h - ix and b - ia, the difference of their angles is
      * the angle of (h - ix)(b + ia) = (hb + xa) + i(ha - xb): one atan2.
      * a and b are cut to 30 bits first so the products fit 64 bits. */
     {
-        int64_t a = pl->l2 * (int64_t)cn, b = pl->l1 * dn + pl->l2 * nn;
-        uint64_t m = (uint64_t)(a < 0 ? -a : a) | (uint64_t)(b < 0 ? -b : b);
+        int64_t a = (int64_t)xgo_umul_wide((uint32_t)pl->l2, cn);
+        int64_t b = xgo_mul_wide((int32_t)pl->l1, dn) + xgo_mul_wide((int32_t)pl->l2, nn);
+        uint64_t m = (uint64_t)a | (uint64_t)(b < 0 ? -b : b);
         unsigned kk = xgo_bit_length(m);
+        int32_t a30, b30;
         if (kk > 30u) {
             a >>= kk - 30u;
             b >>= kk - 30u;
         }
-        t2 = xgo_atan2_64(h * a - x * b, h * b + x * a); /* |terms| < 2^56 */
+        a30 = (int32_t)a;
+        b30 = (int32_t)b;
+        s->t2 = xgo_atan2_64(xgo_mul_wide(h, a30) - xgo_mul_wide(x, b30),
+                             xgo_mul_wide(h, b30) + xgo_mul_wide(x, a30)); /* |terms| < 2^56 */
     }
-    if (!bam_in(g, pl->g_lo, pl->g_hi) || !bam_in(t2, pl->t_lo, pl->t_hi)) {
-        planar_project(pl, x, h, g_out, t2_out);
+    if (!joint_in(pl, XGO_JOINT_KNEE, s->g - pl->knee_off, &s->q[XGO_JOINT_KNEE]) ||
+        !joint_in(pl, XGO_JOINT_HIP, s->t2, &s->q[XGO_JOINT_HIP])) {
+        planar_project(pl, x, h, &s->g, &s->t2);
         return 1;
     }
-    *g_out = g;
-    *t2_out = t2;
     return 0;
 }
 
 /* ------------------------------------------------------------ leg IK / FK */
 
 /* Foot position (leg frame, um) of binary joint angles; g includes the knee
- * offset. */
+ * offset. Products of a length (< 2^31) and a Q30 value: 32 x 32 bits. */
 static void fk_bam(const xgo_profile_t *p, int side_y, xgo_bam_t phi, xgo_bam_t g, xgo_bam_t t2,
                    xgo_vec3_t *foot_um)
 {
     xgo_q30_t s2, c2, s12, c12, sp, cp;
-    int64_t l1 = p->thigh_um, l2 = p->shank_um, d = p->abad_offset_um;
-    int64_t x30, h4, wp34, z34;
+    const int32_t l1 = p->thigh_um, l2 = p->shank_um, d = p->abad_offset_um;
+    int64_t x30, wp34, z34;
+    int32_t h4;
     xgo_sincos(t2, &s2, &c2);
     xgo_sincos(t2 + g, &s12, &c12);
     xgo_sincos(phi, &sp, &cp);
     /* in the leg plane: x = -L1 sin t2 + L2 cos(t2 + g), h = L1 cos t2 + L2 sin(t2 + g) */
-    x30 = -l1 * s2 + l2 * c12;                           /* um * 2^30, < 2^49 */
-    h4 = round_shift(l1 * c2 + l2 * s12, 30 - Q4_SHIFT); /* q4 */
+    x30 = -xgo_mul_wide(l1, s2) + xgo_mul_wide(l2, c12);                                  /* um * 2^30 */
+    h4 = (int32_t)round_shift(xgo_mul_wide(l1, c2) + xgo_mul_wide(l2, s12), 30 - Q4_SHIFT); /* q4 */
     /* about the abduction axis, in um * 2^34 */
-    wp34 = (d * Q4_ONE) * cp + h4 * sp;
-    z34 = -(d * Q4_ONE) * sp + h4 * cp;
+    wp34 = xgo_mul_wide(d * Q4_ONE, cp) + xgo_mul_wide(h4, sp);
+    z34 = -xgo_mul_wide(d * Q4_ONE, sp) + xgo_mul_wide(h4, cp);
     foot_um->x = (int32_t)round_shift(x30, 30);
     foot_um->y = (int32_t)(side_y * (round_shift(wp34, 34) - d));
     foot_um->z = (int32_t)round_shift(z34, 34);
 }
 
-typedef struct leg_solution_s {
-    xgo_bam_t phi, g, t2;
-    int projected;
-} leg_solution_t;
-
 /* One branch of the abduction solution: the foot at h = branch * |h| in the
- * leg plane (branch +1: at or below the thigh joint, -1: above it). */
-static void solve_branch(planar_t *pl, int32_t a_lo, int32_t a_hi, int64_t xq, int64_t wp,
-                         int32_t z, int32_t d, int64_t h_abs, int branch, leg_solution_t *s)
+ * leg plane (branch +1: at or below the thigh joint, -1: above it). All
+ * values in q4 are below 2^26, so every product is 32 x 32 bits. */
+static void solve_branch(planar_t *pl, int32_t xq, int32_t wp, int32_t z, int32_t h_abs, int branch,
+                         leg_solution_t *s)
 {
-    int64_t h = branch > 0 ? h_abs : -h_abs;
+    const xgo_range_t *ar = &pl->p->joint_mdeg[XGO_JOINT_ABAD];
+    const int32_t d4 = pl->p->abad_offset_um * Q4_ONE, wp4 = wp * Q4_ONE, z4 = z * Q4_ONE;
+    int32_t h = branch > 0 ? h_abs : -h_abs;
     s->projected = 0;
     /* (wp, z) is the plane point (d, h) turned by phi:
      *   wp = d cos phi + h sin phi,  z = -d sin phi + h cos phi
      * so cos phi ~ d wp + h z and sin phi ~ h wp - d z (all in q4). */
-    {
-        int64_t d4 = (int64_t)d * Q4_ONE, wp4 = wp * Q4_ONE, z4 = (int64_t)z * Q4_ONE;
-        s->phi = xgo_atan2_64(h * wp4 - d4 * z4, d4 * wp4 + h * z4); /* |terms| < 2^51 */
-    }
-    if (!bam_in(s->phi, a_lo, a_hi)) {
+    s->phi = xgo_atan2_64(xgo_mul_wide(h, wp4) - xgo_mul_wide(d4, z4),
+                          xgo_mul_wide(d4, wp4) + xgo_mul_wide(h, z4)); /* |terms| < 2^51 */
+    if (!joint_in(pl, XGO_JOINT_ABAD, s->phi, &s->q[XGO_JOINT_ABAD])) {
         /* clamp, then project the target onto that leg plane */
         xgo_q30_t sp, cp;
-        s->phi = (uint32_t)(xgo_bam_signed(s->phi) < a_lo ? a_lo : a_hi);
+        s->q[XGO_JOINT_ABAD] = s->q[XGO_JOINT_ABAD] < ar->lo ? ar->lo : ar->hi;
+        s->phi = xgo_mdeg_to_bam(s->q[XGO_JOINT_ABAD]);
         xgo_sincos(s->phi, &sp, &cp);
-        h = round_shift(wp * sp + (int64_t)z * cp, 30 - Q4_SHIFT);
+        h = (int32_t)round_shift(xgo_mul_wide(wp, sp) + xgo_mul_wide(z, cp), 30 - Q4_SHIFT);
         s->projected = 1;
     }
-    s->projected |= planar_ik(pl, xq, h, &s->g, &s->t2);
+    if (planar_ik(pl, xq, h, s)) {
+        s->projected = 1;
+        s->q[XGO_JOINT_KNEE] = xgo_bam_to_mdeg(s->g - pl->knee_off);
+        s->q[XGO_JOINT_HIP] = xgo_bam_to_mdeg(s->t2);
+    }
 }
 
 static int64_t dist2_um(const xgo_vec3_t *a, int32_t x, int32_t y, int32_t z)
@@ -292,17 +317,33 @@ static int64_t dist2_um(const xgo_vec3_t *a, int32_t x, int32_t y, int32_t z)
     return dx * dx + dy * dy + dz * dz; /* all within ~2^21: fits */
 }
 
+static void planar_init(planar_t *pl, const xgo_profile_t *p)
+{
+    pl->p = p;
+    pl->l1 = (int64_t)p->thigh_um * Q4_ONE;
+    pl->l2 = (int64_t)p->shank_um * Q4_ONE;
+    pl->knee_off = xgo_mdeg_to_bam(p->knee_offset_mdeg);
+    pl->sum_sq = xgo_mul_wide((int32_t)pl->l1, (int32_t)pl->l1) + xgo_mul_wide((int32_t)pl->l2, (int32_t)pl->l2);
+    pl->two_l1l2 = 2 * xgo_mul_wide((int32_t)pl->l1, (int32_t)pl->l2);
+    pl->d_shift = xgo_bit_length((uint64_t)pl->two_l1l2);
+    pl->d_shift = pl->d_shift > 30u ? pl->d_shift - 30u : 0u;
+    pl->arcs_ready = 0;
+}
+
+static int32_t clamp_joint(const xgo_profile_t *p, unsigned joint, int32_t v)
+{
+    return clamp_i32(v, p->joint_mdeg[joint].lo, p->joint_mdeg[joint].hi);
+}
+
 int xgo_leg_ik(const xgo_profile_t *p, xgo_leg_t leg, const xgo_vec3_t *foot_um,
                int32_t q_mdeg[XGO_JOINT_COUNT])
 {
     planar_t pl;
     int32_t x = foot_um->x, y = foot_um->y, z = foot_um->z;
-    int32_t d = p->abad_offset_um;
-    int32_t a_lo = limit_bam(p->joint_mdeg[XGO_JOINT_ABAD].lo);
-    int32_t a_hi = limit_bam(p->joint_mdeg[XGO_JOINT_ABAD].hi);
-    xgo_bam_t knee_off = xgo_mdeg_to_bam(p->knee_offset_mdeg);
-    int side = xgo_leg_side_y(leg);
-    int64_t wp, h2, h_abs, xq;
+    const int32_t d = p->abad_offset_um;
+    const int side = xgo_leg_side_y(leg);
+    int32_t wp, h_abs;
+    int64_t h2;
     leg_solution_t below, above;
     const leg_solution_t *sol = &below;
     int inside_axis_cylinder;
@@ -314,30 +355,22 @@ int xgo_leg_ik(const xgo_profile_t *p, xgo_leg_t leg, const xgo_vec3_t *foot_um,
         y /= 2;
         z /= 2;
     }
-
-    pl.l1 = (int64_t)p->thigh_um * Q4_ONE;
-    pl.l2 = (int64_t)p->shank_um * Q4_ONE;
-    pl.g_lo = xgo_bam_signed(xgo_mdeg_to_bam(p->joint_mdeg[XGO_JOINT_KNEE].lo) + knee_off);
-    pl.g_hi = xgo_bam_signed(xgo_mdeg_to_bam(p->joint_mdeg[XGO_JOINT_KNEE].hi) + knee_off);
-    pl.t_lo = limit_bam(p->joint_mdeg[XGO_JOINT_HIP].lo);
-    pl.t_hi = limit_bam(p->joint_mdeg[XGO_JOINT_HIP].hi);
-    pl.arcs_ready = 0;
+    planar_init(&pl, p);
 
     /* Across the abduction axis: wp is the target's outward distance from
      * the axis, h its distance along the leg plane (Pythagoras with d). A
      * target closer to the axis than d is in no leg plane (h = 0 then). */
-    wp = (side > 0 ? (int64_t)y : -(int64_t)y) + d; /* |wp| <= 2^21 */
-    h2 = wp * wp + (int64_t)z * z - (int64_t)d * d;
+    wp = (side > 0 ? y : -y) + d; /* |wp| <= 2^21 */
+    h2 = xgo_mul_wide(wp, wp) + xgo_mul_wide(z, z) - xgo_mul_wide(d, d);
     inside_axis_cylinder = h2 < 0;
-    h_abs = h2 > 0 ? (int64_t)isqrt64_round((uint64_t)h2 << (2 * Q4_SHIFT)) : 0; /* q4 */
-    xq = (int64_t)x * Q4_ONE;
+    h_abs = h2 > 0 ? (int32_t)isqrt64_round((uint64_t)h2 << (2 * Q4_SHIFT)) : 0; /* q4, < 2^26 */
 
     /* Two solutions: foot below the thigh joint's level in the leg plane
      * (the normal one), or above it. Take the first that reaches the target
      * within every limit; if neither does, the one landing nearer. */
-    solve_branch(&pl, a_lo, a_hi, xq, wp, z, d, h_abs, 1, &below);
+    solve_branch(&pl, x * Q4_ONE, wp, z, h_abs, 1, &below);
     if (below.projected && h_abs > 0) {
-        solve_branch(&pl, a_lo, a_hi, xq, wp, z, d, h_abs, -1, &above);
+        solve_branch(&pl, x * Q4_ONE, wp, z, h_abs, -1, &above);
         if (!above.projected) {
             sol = &above;
         } else {
@@ -349,13 +382,9 @@ int xgo_leg_ik(const xgo_profile_t *p, xgo_leg_t leg, const xgo_vec3_t *foot_um,
             }
         }
     }
-
-    q_mdeg[XGO_JOINT_KNEE] = clamp_i32(xgo_bam_to_mdeg(sol->g - knee_off), p->joint_mdeg[XGO_JOINT_KNEE].lo,
-                                       p->joint_mdeg[XGO_JOINT_KNEE].hi);
-    q_mdeg[XGO_JOINT_HIP] = clamp_i32(xgo_bam_to_mdeg(sol->t2), p->joint_mdeg[XGO_JOINT_HIP].lo,
-                                      p->joint_mdeg[XGO_JOINT_HIP].hi);
-    q_mdeg[XGO_JOINT_ABAD] = clamp_i32(xgo_bam_to_mdeg(sol->phi), p->joint_mdeg[XGO_JOINT_ABAD].lo,
-                                       p->joint_mdeg[XGO_JOINT_ABAD].hi);
+    q_mdeg[XGO_JOINT_KNEE] = clamp_joint(p, XGO_JOINT_KNEE, sol->q[XGO_JOINT_KNEE]);
+    q_mdeg[XGO_JOINT_HIP] = clamp_joint(p, XGO_JOINT_HIP, sol->q[XGO_JOINT_HIP]);
+    q_mdeg[XGO_JOINT_ABAD] = clamp_joint(p, XGO_JOINT_ABAD, sol->q[XGO_JOINT_ABAD]);
     return (sol->projected || inside_axis_cylinder) ? XGO_IK_PROJECTED : XGO_IK_REACHED;
 }
 
