@@ -500,7 +500,7 @@ static void test_atan2_against_libm(void)
         check_atan2(ry, rx);
     }
     report("xgo_atan2", max_atan_err, "LSB of BAM");
-    TEST_ASSERT_TRUE(max_atan_err <= 64.0);
+    TEST_ASSERT_TRUE(max_atan_err <= 32.0);
 }
 
 static void test_atan2_64_against_libm(void)
@@ -527,7 +527,7 @@ static void test_atan2_64_against_libm(void)
         }
     }
     report("xgo_atan2_64", max_err, "LSB of BAM");
-    TEST_ASSERT_TRUE(max_err <= 64.0);
+    TEST_ASSERT_TRUE(max_err <= 32.0);
 }
 
 /* ------------------------------------------------------------ asin / acos */
@@ -574,8 +574,8 @@ static void test_asin_acos_against_libm(void)
     TEST_ASSERT_EQUAL_UINT32(XGO_BAM_90, xgo_acos(0));
     report("xgo_asin", max_as, "LSB of BAM");
     report("xgo_acos", max_ac, "LSB of BAM");
-    TEST_ASSERT_TRUE(max_as <= 64.0);
-    TEST_ASSERT_TRUE(max_ac <= 64.0);
+    TEST_ASSERT_TRUE(max_as <= 32.0);
+    TEST_ASSERT_TRUE(max_ac <= 32.0);
 }
 
 int main(void)

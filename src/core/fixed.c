@@ -270,29 +270,6 @@ xgo_q16_t xgo_q16_sqrt(xgo_q16_t x)
 
 /* ------------------------------------------------------------ angles */
 
-/* One mdeg is 2^32 / 360000 = 11930 + 5228/11250 BAM. The integer part is
- * applied modulo 2^32 (exact), the fraction as a Q32 multiplier:
- * round(5228/11250 * 2^32). */
-#define MDEG_TO_BAM_INT 11930u
-#define MDEG_TO_BAM_FRAC_Q32 1995919024 /* < 2^31 */
-
-xgo_bam_t xgo_mdeg_to_bam(int32_t mdeg)
-{
-    uint32_t whole = (uint32_t)mdeg * MDEG_TO_BAM_INT; /* modulo 2^32 */
-    /* |mdeg| <= 2^31, multiplier < 2^31: the product fits in int64; the
-     * multiplier's rounding adds at most 0.25 LSB at |mdeg| = 2^31. */
-    int64_t frac = (xgo_mul_wide(mdeg, MDEG_TO_BAM_FRAC_Q32) + ((int64_t)1 << 31)) >> 32;
-    return whole + (uint32_t)(uint64_t)frac;
-}
-
-int32_t xgo_bam_signed(xgo_bam_t a)
-{
-    if (a < 0x80000000u) {
-        return (int32_t)a;
-    }
-    return -(int32_t)(0xFFFFFFFFu - a) - 1;
-}
-
 int32_t xgo_wrap_mdeg(int32_t mdeg)
 {
     int32_t v = mdeg;
@@ -308,11 +285,6 @@ int32_t xgo_wrap_mdeg(int32_t mdeg)
     return v;
 }
 
-int32_t xgo_bam_to_mdeg(xgo_bam_t a)
-{
-    int64_t p = xgo_mul_wide(xgo_bam_signed(a), XGO_MDEG_PER_TURN); /* |p| < 2^50 */
-    return (int32_t)((p + ((int64_t)1 << 31)) >> 32);
-}
 
 /* ------------------------------------------------------------ sin / cos */
 
@@ -543,11 +515,8 @@ static uint32_t atan_octant(uint32_t ux, uint32_t uy)
     const int32_t ey = (int32_t)(uy << 5) - (int32_t)(i * ux); /* |ey| <= ux / 2 */
     const uint32_t ex = (ux << 5) + i * uy;                       /* [2^29, 2^31) */
     const uint32_t m = ey < 0 ? (uint32_t)-ey : (uint32_t)ey;
-    uint32_t q, u, w, c, ah, al, b;
-    if (m == 0u) {
-        return atan_tab[i];
-    }
-    q = residual_q29(m, ex); /* e in Q29, < 2^23 */
+    uint32_t q = residual_q29(m, ex); /* e in Q29, < 2^23 (0 on the axes and diagonals) */
+    uint32_t u, w, c, ah, al, b;
     /* e^3/3 in Q29 from 15-bit pieces (u = e in Q21) */
     u = q >> 8;
     w = (u * u) >> 15;               /* e^2 in Q27 */
@@ -561,48 +530,47 @@ static uint32_t atan_octant(uint32_t ux, uint32_t uy)
     return ey < 0 ? atan_tab[i] - b : atan_tab[i] + b;
 }
 
-/* Largest component scaled to [2^24, 2^25] (exact when scaled up, rounded
- * when scaled down: 25 bits of the ratio kept). */
-static xgo_bam_t atan2_mag(uint32_t ux, uint32_t uy, int xneg, int yneg)
+/* The angle of (ux, uy) in the first quadrant, from the octant (swap so
+ * uy <= ux) with the larger component scaled to [2^24, 2^25] (exact when
+ * scaled up, rounded when scaled down: 25 bits of the ratio kept). Axes
+ * and diagonals come out exact by themselves (the residual is 0 there);
+ * atan2(0, 0) = 0. */
+/* round(v / 2^k), 1 <= k <= 31, without overflow: for k >= 2 the dropped
+ * low bit cannot change the result, so the half is added to v / 2. */
+static uint32_t round_shift_u32(uint32_t v, unsigned k)
 {
-    int swap = uy > ux;
+    if (k == 1u) {
+        return (v >> 1) + (v & 1u);
+    }
+    return ((v >> 1) + (1u << (k - 2u))) >> (k - 1u);
+}
+
+static uint32_t atan2_quadrant(uint32_t ux, uint32_t uy)
+{
+    const int swap = uy > ux;
+    const uint32_t big = swap ? uy : ux, small = swap ? ux : uy;
     uint32_t a;
     unsigned n;
-    if (swap) {
-        uint32_t t = ux;
-        ux = uy;
-        uy = t;
+    if (big == 0u) {
+        return 0u;
     }
-    if (ux == 0u) {
-        return 0u; /* atan2(0, 0) */
-    }
-    if (uy == 0u) {
-        a = 0u; /* on an axis: exact */
-    } else if (uy == ux) {
-        a = XGO_BAM_90 / 2u; /* on a diagonal: exact */
+    n = clz32(big);
+    if (n >= 7u) {
+        a = atan_octant(big << (n - 7u), small << (n - 7u));
     } else {
-        n = clz32(ux);
-        if (n > 7u) {
-            ux <<= n - 7u;
-            uy <<= n - 7u;
-        } else if (n < 7u && ux > (1u << 25)) {
-            /* rounded: (v >> 1) + half cannot pass 2^32 */
-            unsigned k = 7u - n;
-            ux = ((ux >> 1) + (1u << (k - 1u))) >> (k - 1u);
-            uy = ((uy >> 1) + (1u << (k - 1u))) >> (k - 1u);
-        }
-        a = atan_octant(ux, uy);
+        const unsigned k = 7u - n;
+        a = atan_octant(round_shift_u32(big, k), round_shift_u32(small, k));
     }
-    if (swap) {
-        a = XGO_BAM_90 - a;
-    }
+    return swap ? XGO_BAM_90 - a : a;
+}
+
+static xgo_bam_t atan2_mag(uint32_t ux, uint32_t uy, int xneg, int yneg)
+{
+    uint32_t a = atan2_quadrant(ux, uy);
     if (xneg) {
         a = XGO_BAM_180 - a;
     }
-    if (yneg) {
-        a = 0u - a;
-    }
-    return a;
+    return yneg ? 0u - a : a;
 }
 
 static uint32_t abs_u32(int32_t v)
@@ -634,7 +602,7 @@ xgo_bam_t xgo_atan2_64(int64_t y, int64_t x)
 {
     uint64_t ux = abs_u64(x);
     uint64_t uy = abs_u64(y);
-    uint64_t m = ux > uy ? ux : uy;
+    uint64_t m = ux | uy; /* the bit length of the larger */
     unsigned k = 0;
     /* Scale both down, once and rounded, until the larger is at most 2^25
      * (atan2_mag's working range: no second rounding there). */

@@ -45,6 +45,8 @@
 
 #include <stdint.h>
 
+#include "wide.h" /* the inline angle conversions */
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -111,17 +113,35 @@ xgo_q16_t xgo_q16_sqrt(xgo_q16_t x);
 
 /* ------------------------------------------------------------ angles */
 
+/* The three conversions are inline (the leg IK uses them several times per
+ * leg, every tick); their products are 32 x 32 -> 64 bits (wide.h). */
+
+/* The binary angle as a signed value in [-2^31, 2^31) (portable cast). */
+static inline int32_t xgo_bam_signed(xgo_bam_t a)
+{
+    return a < 0x80000000u ? (int32_t)a : -(int32_t)(0xFFFFFFFFu - a) - 1;
+}
+
 /* mdeg -> binary angle, rounded, wrapped modulo one turn; any int32 input.
- * Measured max error: 0.50 LSB for |mdeg| <= 360000, 0.66 LSB over all
- * int32 (bound 0.75). */
-xgo_bam_t xgo_mdeg_to_bam(int32_t mdeg);
+ * One mdeg is 2^32 / 360000 = 11930 + 5228/11250 BAM: the integer part is
+ * applied modulo 2^32 (exact), the fraction as a Q32 multiplier,
+ * round(5228/11250 * 2^32) = 1995919024. Measured max error: 0.50 LSB for
+ * |mdeg| <= 360000, 0.66 LSB over all int32 (bound 0.75). */
+static inline xgo_bam_t xgo_mdeg_to_bam(int32_t mdeg)
+{
+    const uint32_t whole = (uint32_t)mdeg * 11930u; /* modulo 2^32 */
+    /* |product| < 2^62; the multiplier's rounding adds at most 0.25 LSB */
+    const int64_t frac = (xgo_mul_wide(mdeg, 1995919024) + ((int64_t)1 << 31)) >> 32;
+    return whole + (uint32_t)(uint64_t)frac;
+}
 
 /* binary angle -> mdeg in [-180000, 180000] (angles past half a turn are
  * negative), rounded to nearest. Max error 0.5 mdeg (exact rounding). */
-int32_t xgo_bam_to_mdeg(xgo_bam_t a);
-
-/* The binary angle as a signed value in [-2^31, 2^31) (portable cast). */
-int32_t xgo_bam_signed(xgo_bam_t a);
+static inline int32_t xgo_bam_to_mdeg(xgo_bam_t a)
+{
+    const int64_t p = xgo_mul_wide(xgo_bam_signed(a), XGO_MDEG_PER_TURN); /* |p| < 2^50 */
+    return (int32_t)((p + ((int64_t)1 << 31)) >> 32);
+}
 
 /* An angle in mdeg wrapped into [-180000, 180000); any int32 input. Angles
  * within a few turns (the usual case) cost two compares, no division. */
@@ -139,20 +159,20 @@ xgo_q30_t xgo_cos(xgo_bam_t a);
 /* Angle of the vector (x, y), any int32 pair (x, y are in the same unit).
  * Returns a binary angle; read it with xgo_bam_signed / xgo_bam_to_mdeg
  * (-180 degrees for y == 0, x < 0). atan2(0, 0) == 0; exact on the axes and
- * diagonals. Measured max error over all inputs: 45.3 LSB of BAM (6.6e-8
- * rad, 3.8e-6 degree) relative to the exact angle of the integer pair (the
- * larger component keeps 25 bits); asserted bound 64 LSB. */
+ * diagonals. Measured max error over all inputs: 26.1 LSB of BAM (3.8e-8
+ * rad, 2.2e-6 degree) relative to the exact angle of the integer pair (the
+ * larger component keeps 25 bits); asserted bound 32 LSB. */
 xgo_bam_t xgo_atan2(int32_t y, int32_t x);
 
 /* Same for 64-bit components (both are scaled down together first, so the
  * angle keeps 25 bits of relative precision). Measured max error 25.8 LSB of
- * BAM; asserted bound 64 LSB. */
+ * BAM; asserted bound 32 LSB. */
 xgo_bam_t xgo_atan2_64(int64_t y, int64_t x);
 
 /* asin / acos of a Q30 value; arguments outside [-1, 1] are clamped.
  * asin returns [-90, 90] degrees (as a signed binary angle), acos [0, 180];
- * exact at -1, 0, 1. Measured max error: 39.4 LSB of BAM (5.8e-8 rad)
- * relative to libm on the same Q30 input; asserted bound 64 LSB. */
+ * exact at -1, 0, 1. Measured max error: 20.2 LSB of BAM (3.0e-8 rad)
+ * relative to libm on the same Q30 input; asserted bound 32 LSB. */
 xgo_bam_t xgo_asin(xgo_q30_t x);
 xgo_bam_t xgo_acos(xgo_q30_t x);
 

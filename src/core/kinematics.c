@@ -64,13 +64,11 @@ static xgo_bam_t clamp_arc(xgo_bam_t a, xgo_bam_t lo, uint32_t width)
     return a;
 }
 
+/* round(sqrt(v)) for v < 2^62 (every caller: at most 2^60): the floor of
+ * sqrt(4v) = 2 sqrt(v), halved with the carry. */
 static uint32_t isqrt64_round(uint64_t v)
 {
-    uint32_t r = xgo_isqrt64(v);
-    if (v - xgo_umul_wide(r, r) > r && r != 0xFFFFFFFFu) {
-        ++r;
-    }
-    return r;
+    return (xgo_isqrt64(v << 2) + 1u) >> 1;
 }
 
 /* ------------------------------------------------------------ planar IK */
