@@ -446,7 +446,7 @@ static uint32_t transient_rate(const xgo_gait_t *g, gait_tick_t *x, uint32_t rat
         }
         foot_velocity(x->vel, x->w_q24, g->pos_q8[leg][0] >> 8, g->pos_q8[leg][1] >> 8, x->vf[leg]);
         remaining = 0u - (g->phase - t->lift[leg]);
-        gait_stance_midpoint(g, leg, x->vel, x->w_q24, half_time_q16(t, remaining), q);
+        gait_midpoint_of(g, leg, x->vf[leg], half_time_q16(t, remaining), q);
         foot_velocity(x->vel, x->w_q24, q[0], q[1], fm);
         for (c = 0; c < 2; ++c) {
             int32_t off = (g->pos_q8[leg][c] >> 8) - g->stance_um[leg][c];

@@ -121,16 +121,21 @@ static inline int32_t gait_reach_y(int32_t w_mdeg_s)
 /* Midpoint of the rest of a planted foot's path (um), estimated with the
  * velocity (v, w): q = p - (v + w x p) * T/2. Under yaw the path is an arc;
  * the ground velocity at q is the foot's mean velocity over the rest of its
- * stance to second order, and it is linear in (v, w) for a fixed q. */
+ * stance to second order, and it is linear in (v, w) for a fixed q.
+ * gait_midpoint_of: the same given the foot's ground velocity f. */
+static inline void gait_midpoint_of(const xgo_gait_t *g, int leg, const int32_t f[2],
+                                    uint32_t half_q16, int32_t q[2])
+{
+    q[0] = (g->pos_q8[leg][0] >> 8) - mul_q(f[0], (int32_t)half_q16, 16u);
+    q[1] = (g->pos_q8[leg][1] >> 8) - mul_q(f[1], (int32_t)half_q16, 16u);
+}
+
 static inline void gait_stance_midpoint(const xgo_gait_t *g, int leg, const int32_t v[2],
                                         int32_t w_q24, uint32_t half_q16, int32_t q[2])
 {
     int32_t f[2];
-    int32_t px = g->pos_q8[leg][0] >> 8;
-    int32_t py = g->pos_q8[leg][1] >> 8;
-    foot_velocity(v, w_q24, px, py, f);
-    q[0] = px - mul_q(f[0], (int32_t)half_q16, 16u);
-    q[1] = py - mul_q(f[1], (int32_t)half_q16, 16u);
+    foot_velocity(v, w_q24, g->pos_q8[leg][0] >> 8, g->pos_q8[leg][1] >> 8, f);
+    gait_midpoint_of(g, leg, f, half_q16, q);
 }
 
 /* ---- the governor (gait_governor.c) ---- */
