@@ -133,6 +133,36 @@ static void test_limp_joints_ignore_targets_and_reload_without_a_jump(void)
 
 /* Set zero: the current angle joins the offset and reads 0 from then on
  * (clamped into the limits); offsets stay in [-180, 180) degrees. */
+/* The control tick's one-pass form does what the two calls do, limp
+ * joints, limits and negative steps included. */
+static void test_follow_is_set_targets_then_tick(void)
+{
+    xgo_servos_t two;
+    int32_t q[XGO_SERVO_COUNT];
+    unsigned i, n;
+    srand(12);
+    for (n = 0; n < 2000; n++) {
+        const int32_t step = (int32_t)(rand() % 4000) - 500;
+        for (i = 0; i < XGO_SERVO_COUNT; i++) {
+            q[i] = (int32_t)(rand() % 400000) - 200000;
+        }
+        if (n % 50 == 0) {
+            xgo_servos_unload(&s, (uint16_t)(rand() & 0xFFF));
+            xgo_servos_load(&s, (uint16_t)(rand() & 0xFFF));
+        }
+        two = s;
+        xgo_servos_set_targets(&two, q);
+        xgo_servos_tick(&two, step);
+        xgo_servos_follow(&s, q, step);
+        TEST_ASSERT_EQUAL_INT32_ARRAY(two.angle_mdeg, s.angle_mdeg, XGO_SERVO_COUNT);
+        TEST_ASSERT_EQUAL_INT32_ARRAY(two.target_mdeg, s.target_mdeg, XGO_SERVO_COUNT);
+        for (i = 0; i < XGO_SERVO_COUNT; i++) {
+            TEST_ASSERT_TRUE(s.angle_mdeg[i] >= limits(i)->lo && s.angle_mdeg[i] <= limits(i)->hi);
+        }
+    }
+    TEST_ASSERT_NOT_EQUAL(0, s.unloaded); /* limp joints were part of it */
+}
+
 static void test_set_zero_moves_the_angle_into_the_offset_within_a_turn(void)
 {
     int32_t q[XGO_SERVO_COUNT];
@@ -170,6 +200,7 @@ int main(void)
     RUN_TEST(test_targets_beyond_the_limits_stop_at_the_limits);
     RUN_TEST(test_a_negative_step_holds_every_joint);
     RUN_TEST(test_limp_joints_ignore_targets_and_reload_without_a_jump);
+    RUN_TEST(test_follow_is_set_targets_then_tick);
     RUN_TEST(test_set_zero_moves_the_angle_into_the_offset_within_a_turn);
     return UNITY_END();
 }

@@ -570,8 +570,7 @@ void xgo_motion_tick(xgo_motion_t *m, xgo_regs_t *r)
         contact_known = 0;
         break;
     }
-    xgo_servos_set_targets(&m->servos, q);
-    xgo_servos_tick(&m->servos, step);
+    xgo_servos_follow(&m->servos, q, step);
     measure_feet(m, contact_known);
     xgo_imu_tick(&m->imu, m->pose.roll_mdeg, m->pose.pitch_mdeg, m->pose.yaw_mdeg, yaw_rate);
     inertial_tick(m);

@@ -38,6 +38,14 @@ void xgo_servos_set_targets(xgo_servos_t *s, const int32_t target_mdeg[XGO_SERVO
     }
 }
 
+/* One joint's step toward its target, at most max_step (>= 0). Both are
+ * within the joint limits (|v| < 2^20), so no overflow. */
+static int32_t step_toward(int32_t angle, int32_t target, int32_t max_step)
+{
+    const int32_t error = target - angle;
+    return error > max_step ? angle + max_step : (error < -max_step ? angle - max_step : target);
+}
+
 void xgo_servos_tick(xgo_servos_t *s, int32_t max_step_mdeg)
 {
     unsigned i;
@@ -45,17 +53,29 @@ void xgo_servos_tick(xgo_servos_t *s, int32_t max_step_mdeg)
         max_step_mdeg = 0;
     }
     for (i = 0; i < XGO_SERVO_COUNT; i++) {
-        /* Both are within the joint limits (|v| < 2^20), so no overflow. */
-        const int32_t error = s->target_mdeg[i] - s->angle_mdeg[i];
-        if ((s->unloaded & (1u << i)) != 0) {
-            continue;
+        if ((s->unloaded & (1u << i)) == 0) {
+            s->angle_mdeg[i] = step_toward(s->angle_mdeg[i], s->target_mdeg[i], max_step_mdeg);
         }
-        if (error > max_step_mdeg) {
-            s->angle_mdeg[i] += max_step_mdeg;
-        } else if (error < -max_step_mdeg) {
-            s->angle_mdeg[i] -= max_step_mdeg;
-        } else {
-            s->angle_mdeg[i] = s->target_mdeg[i];
+    }
+}
+
+void xgo_servos_follow(xgo_servos_t *s, const int32_t target_mdeg[XGO_SERVO_COUNT], int32_t max_step_mdeg)
+{
+    const xgo_range_t *range = s->profile->joint_mdeg;
+    unsigned leg, j, i = 0;
+    if (max_step_mdeg < 0) {
+        max_step_mdeg = 0;
+    }
+    /* one pass instead of two; leg by joint, no i % 3 */
+    for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
+        for (j = 0; j < XGO_JOINT_COUNT; j++, i++) {
+            if ((s->unloaded & (1u << i)) == 0) {
+                const int32_t t = target_mdeg[i] < range[j].lo   ? range[j].lo
+                                  : target_mdeg[i] > range[j].hi ? range[j].hi
+                                                                 : target_mdeg[i];
+                s->target_mdeg[i] = t;
+                s->angle_mdeg[i] = step_toward(s->angle_mdeg[i], t, max_step_mdeg);
+            }
         }
     }
 }

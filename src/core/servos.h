@@ -41,6 +41,10 @@ void xgo_servos_set_targets(xgo_servos_t *s, const int32_t target_mdeg[XGO_SERVO
 /* Move every loaded joint toward its target by at most max_step_mdeg. */
 void xgo_servos_tick(xgo_servos_t *s, int32_t max_step_mdeg);
 
+/* Both in one pass: xgo_servos_set_targets, then xgo_servos_tick (the
+ * control tick's form). */
+void xgo_servos_follow(xgo_servos_t *s, const int32_t target_mdeg[XGO_SERVO_COUNT], int32_t max_step_mdeg);
+
 /* Unload / load the joints in mask (bit i = joint i). Loading a joint sets
  * its target to where it is. */
 void xgo_servos_unload(xgo_servos_t *s, uint16_t mask);
