@@ -18,6 +18,7 @@
 
 #include <stdint.h>
 
+#include "xgo/config.h"  /* XGO_WITH_* */
 #include "xgo/profile.h" /* XGO_LEG_COUNT, XGO_SERVO_COUNT, xgo_profile_t */
 #include "xgo/regs.h"    /* XGO_REG_COUNT, XGO_FIRMWARE_LEN */
 #include "xgo/types.h"   /* xgo_vec3_t, xgo_body_pose_t */
@@ -177,19 +178,22 @@ typedef struct xgo_imu_s {
     int32_t yaw_mdeg;
 } xgo_imu_t;
 
-/* Leg odometry (src/core/odometry.h). */
+/* Leg odometry (src/core/odometry.h); without it (XGO_WITH_ODOMETRY 0,
+ * xgo/config.h) only the pose, which stays at the origin. */
 typedef struct xgo_odometry_s {
     int64_t x_q8;                           /* world position, 1/256 um */
     int64_t y_q8;
     uint32_t yaw;                           /* heading, binary angle (xgo_bam_t) */
     int32_t yaw_sc[2];                      /* its sine and cosine, Q30 (kept with it:
                                                the tick needs them twice) */
+#if XGO_WITH_ODOMETRY
     xgo_vec3_t prev_um[XGO_LEG_COUNT];      /* last tick's feet (machine frame; z unused) */
     uint8_t prev_contact;                   /* bit leg: planted last tick */
     uint8_t have_prev;                      /* prev_* are valid */
     int32_t last_d_q8[2];                   /* last tick's translation (body frame) */
     int32_t last_dyaw;                      /* last tick's rotation (signed BAM) */
     uint32_t extrapolated_ticks;            /* ticks with < 2 common planted feet */
+#endif
 } xgo_odometry_t;
 
 /* Turn to heading, register 0x3F (src/core/heading.h). */
@@ -201,11 +205,13 @@ typedef struct xgo_heading_s {
 
 /* Accelerometer and gyroscope of the IMU block 0x65 (src/core/inertial.h). */
 typedef struct xgo_inertial_s {
+#if XGO_WITH_INERTIAL /* else only the outputs, 0 (xgo/config.h) */
     int64_t pos_q8[2][3];    /* body centre, world, 1/256 um: last tick, the one before */
     int32_t att_mdeg[3];     /* last tick's roll, pitch, yaw */
     int32_t accel_q8[3];     /* filter states, LSB * 256 */
     int32_t gyro_q8[3];
     uint8_t history;         /* ticks seen, up to 2 */
+#endif
     int16_t accel[3];        /* outputs, LSB */
     int16_t gyro[3];
 } xgo_inertial_t;
@@ -214,9 +220,11 @@ typedef struct xgo_inertial_s {
 typedef struct xgo_arm_s {
     const xgo_arm_geometry_t *geo;
     int32_t q_mdeg[XGO_ARM_JOINT_COUNT];      /* servo angles: where they are */
+#if XGO_WITH_MINI2 /* else no model has the arm: geo stays NULL (xgo/config.h) */
     int32_t target_mdeg[XGO_ARM_JOINT_COUNT]; /* where they are going */
     int32_t point_um[2];                      /* commanded claw point x, z (arm frame) */
     uint8_t follow_point;  /* the joints serve point_um (else direct servo commands) */
+#endif
     uint8_t out_of_reach;  /* the point now served had to be projected */
 } xgo_arm_t;
 
