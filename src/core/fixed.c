@@ -133,49 +133,6 @@ uint32_t xgo_udiv64_cap(uint64_t n, uint64_t d, uint32_t cap)
 
 /* ------------------------------------------------------------ square root */
 
-/* Leading zero bits of v (32 for 0). GCC and Clang have a builtin (one
- * instruction on most cores, a small libgcc routine on Cortex-M0); the
- * portable fallback is a 5-step binary search. */
-static unsigned clz32(uint32_t v)
-{
-#if defined(__GNUC__) && UINT32_MAX == 0xFFFFFFFFu && defined(__SIZEOF_INT__) && __SIZEOF_INT__ == 4
-    return v == 0u ? 32u : (unsigned)__builtin_clz(v);
-#else
-    unsigned n = 0;
-    if (v == 0u) {
-        return 32u;
-    }
-    if (v <= 0x0000FFFFu) {
-        n += 16u;
-        v <<= 16;
-    }
-    if (v <= 0x00FFFFFFu) {
-        n += 8u;
-        v <<= 8;
-    }
-    if (v <= 0x0FFFFFFFu) {
-        n += 4u;
-        v <<= 4;
-    }
-    if (v <= 0x3FFFFFFFu) {
-        n += 2u;
-        v <<= 2;
-    }
-    if (v <= 0x7FFFFFFFu) {
-        n += 1u;
-    }
-    return n;
-#endif
-}
-
-unsigned xgo_bit_length(uint64_t v)
-{
-    if ((v >> 32) != 0u) {
-        return 64u - clz32((uint32_t)(v >> 32));
-    }
-    return 32u - clz32((uint32_t)v);
-}
-
 /* round(sqrt((32 + i) * 2^25)) - 2^15, i = 0..96: the square root of a
  * normalised 32-bit value m in [2^30, 2^32) at 96 equal steps of m (the
  * chord between two entries is within 2 of floor(sqrt(m))). */
@@ -217,7 +174,7 @@ uint32_t xgo_isqrt32(uint32_t x)
     if (x == 0u) {
         return 0u;
     }
-    s = clz32(x) & ~1u;
+    s = xgo_clz32(x) & ~1u;
     return isqrt_norm32(x << s) >> (s / 2u);
 }
 
@@ -233,7 +190,7 @@ uint32_t xgo_isqrt64(uint64_t x)
     if (hi == 0u) {
         return xgo_isqrt32((uint32_t)x);
     }
-    s = clz32(hi) & ~1u;
+    s = xgo_clz32(hi) & ~1u;
     m = x << s;
     hi = (uint32_t)(m >> 32);
     lo = (uint32_t)m;
@@ -449,7 +406,7 @@ static uint32_t nearest_node(uint32_t uy, uint32_t ux)
  * low word), two hardware divisions instead of a libgcc call. */
 static uint32_t div_shifted(uint32_t n, uint32_t d, uint32_t *rem)
 {
-    const unsigned s = clz32(d); /* >= 1: normalise the divisor */
+    const unsigned s = xgo_clz32(d); /* >= 1: normalise the divisor */
     const uint32_t v = d << s, vn1 = v >> 16, vn0 = v & 0xFFFFu;
     const uint32_t u1 = n << s; /* < v */
     uint32_t q1 = u1 / vn1, rhat = u1 - q1 * vn1;
@@ -477,6 +434,19 @@ static uint32_t div_shifted(uint32_t n, uint32_t d, uint32_t *rem)
 }
 #endif
 
+#if XGO_CORE_NARROW_CPU
+/* One step of restoring division: the next quotient bit. */
+#define RESTORING_STEP(r, q, d) \
+    do {                        \
+        (r) <<= 1;              \
+        (q) <<= 1;              \
+        if ((r) >= (d)) {       \
+            (r) -= (d);         \
+            (q) |= 1u;          \
+        }                       \
+    } while (0)
+#endif
+
 /* floor(m * 2^29 / e) for m * 2^6 <= e < 2^31: the residual ratio, at most
  * 2^23. Exact on every target (same result): one instruction on a 64-bit
  * host, two 16-bit digit steps with a 32-bit divider, a 24-step restoring
@@ -489,13 +459,11 @@ static uint32_t residual_q29(uint32_t m, uint32_t e)
     uint32_t r = m << 5; /* < e: the quotient's top bits are zero */
     uint32_t q = 0;
     int i;
-    for (i = 0; i < 24; ++i) {
-        r <<= 1;
-        q <<= 1;
-        if (r >= e) {
-            r -= e;
-            q |= 1u;
-        }
+    for (i = 0; i < 6; ++i) { /* 4 steps a round: less loop overhead at -Os */
+        RESTORING_STEP(r, q, e);
+        RESTORING_STEP(r, q, e);
+        RESTORING_STEP(r, q, e);
+        RESTORING_STEP(r, q, e);
     }
     return q;
 #else
@@ -554,7 +522,7 @@ static uint32_t atan2_quadrant(uint32_t ux, uint32_t uy)
     if (big == 0u) {
         return 0u;
     }
-    n = clz32(big);
+    n = xgo_clz32(big);
     if (n >= 7u) {
         a = atan_octant(big << (n - 7u), small << (n - 7u));
     } else {
@@ -602,18 +570,27 @@ xgo_bam_t xgo_atan2_64(int64_t y, int64_t x)
 {
     uint64_t ux = abs_u64(x);
     uint64_t uy = abs_u64(y);
-    uint64_t m = ux | uy; /* the bit length of the larger */
-    unsigned k = 0;
-    /* Scale both down, once and rounded, until the larger is at most 2^25
-     * (atan2_mag's working range: no second rounding there). */
-    if (m >= ((uint64_t)1 << 25)) {
-        k = xgo_bit_length(m) - 25u;
+    const uint64_t m = ux | uy; /* the bit length of the larger */
+    unsigned k;
+    uint32_t big, small, a;
+    if ((m >> 25) == 0u) {
+        return atan2_mag((uint32_t)ux, (uint32_t)uy, x < 0, y < 0);
     }
-    if (k > 0u) {
-        ux = rshift_round_u64(ux, k);
-        uy = rshift_round_u64(uy, k);
+    /* Scale both down, once and rounded, so the larger lands in [2^24,
+     * 2^25]: atan_octant's range, no second normalisation. */
+    k = xgo_bit_length(m) - 25u;
+    ux = rshift_round_u64(ux, k);
+    uy = rshift_round_u64(uy, k);
+    big = (uint32_t)(ux > uy ? ux : uy);
+    small = (uint32_t)(ux > uy ? uy : ux);
+    a = atan_octant(big, small);
+    if (uy > ux) {
+        a = XGO_BAM_90 - a;
     }
-    return atan2_mag((uint32_t)ux, (uint32_t)uy, x < 0, y < 0);
+    if (x < 0) {
+        a = XGO_BAM_180 - a;
+    }
+    return y < 0 ? 0u - a : a;
 }
 
 /* ------------------------------------------------------------ asin / acos */
