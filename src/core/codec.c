@@ -51,6 +51,14 @@ uint8_t xgo_range_to_byte(const xgo_range_t *r, int32_t v)
     return (uint8_t)(num / span);
 }
 
+/* n / 255; on a core without a divider as a multiply by ceil(2^39 / 255)
+ * (exact for every uint32 n, checked exhaustively): the board decodes a few
+ * registers every tick. */
+static uint32_t div255(uint32_t n)
+{
+    return XGO_CORE_NARROW_CPU ? (uint32_t)(xgo_umul_wide(n, 0x80808081u) >> 39) : n / 255u;
+}
+
 int32_t xgo_byte_to_range(const xgo_range_t *r, uint8_t b)
 {
     if (r->hi <= r->lo) {
@@ -58,7 +66,7 @@ int32_t xgo_byte_to_range(const xgo_range_t *r, uint8_t b)
     }
     /* ceil(b * span / 255): rounding up (by less than one unit) makes
      * encode(decode(b)) == b for every byte whenever span >= 255 units. */
-    return (int32_t)((uint32_t)r->lo + ((uint32_t)b * span_of(r) + 254u) / 255u);
+    return (int32_t)((uint32_t)r->lo + div255((uint32_t)b * span_of(r) + 254u));
 }
 
 int32_t xgo_byte_to_range_mid(const xgo_range_t *r, uint8_t b)

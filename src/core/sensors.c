@@ -25,7 +25,12 @@ void xgo_battery_tick(xgo_battery_t *b, int walking)
 uint8_t xgo_battery_percent(const xgo_battery_t *b)
 {
     const uint32_t c = b->charge_upct > FULL_UPCT ? FULL_UPCT : b->charge_upct;
-    return (uint8_t)((c + UPCT_PER_PCT - 1u) / UPCT_PER_PCT);
+    const uint32_t n = c + UPCT_PER_PCT - 1u;
+    /* n / 10^6 as a multiply by ceil(2^50 / 10^6) on a core without a
+     * divider (exact for every uint32 n, checked exhaustively): the board
+     * publishes the percentage every tick */
+    return (uint8_t)(XGO_CORE_NARROW_CPU ? (uint32_t)(xgo_umul_wide(n, 0x431BDE83u) >> 50)
+                                         : n / UPCT_PER_PCT);
 }
 
 void xgo_imu_init(xgo_imu_t *imu)
