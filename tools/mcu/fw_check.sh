@@ -7,7 +7,17 @@
 #     may be linked at all (the core has no float);
 #   - 64-bit division helpers (__aeabi_ldivmod, __aeabi_uldivmod, __divdi3,
 #     __udivdi3, __udivmoddi4, ...) reachable from xgo_board_tick: found by
-#     walking direct calls and tail calls in the disassembly from the tick.
+#     walking direct calls and tail calls in the disassembly from the tick;
+#   - the worst-case stack, a static bound: the frames GCC reports
+#     (-fstack-usage: the .su files next to the image's objects, which the
+#     firmware build writes) summed along the deepest call path from
+#     Reset_Handler, plus the deepest interrupt handler (*_irq; the fault
+#     handlers stop the firmware) and the 32-byte exception frame (the
+#     ports give every interrupt the same priority: none nests). An indirect call (blx/bx
+#     through a register) may reach any function whose address is in a
+#     literal pool; recursion is cut at the second visit; functions without
+#     a .su entry (libgcc, assembly) count 0 bytes (libgcc's helpers the
+#     images link push at most a few registers).
 # Prints one line per figure; exits 1 if an image has a soft-float helper or
 # a 64-bit division reachable from the tick. Needs arm-none-eabi binutils.
 set -euo pipefail
@@ -44,6 +54,64 @@ reachable() {
     }'
 }
 
+# stack_bound ELF: "MAIN_BYTES MAIN_PATH IRQ_BYTES IRQ_PATH" (see the top).
+stack_bound() {
+  local elf=$1
+  { find "$(dirname "$elf")" -name '*.su' -exec cat {} + 2>/dev/null | sed 's/^/SU\t/'
+    arm-none-eabi-objdump -d --no-show-raw-insn "$elf"; } | awk -F'\n' '
+    function hex(h,   i, v) { # mawk has no strtonum
+      h = tolower(h); sub(/^0x/, "", h); v = 0
+      for (i = 1; i <= length(h); i++) v = v * 16 + index("0123456789abcdef", substr(h, i, 1)) - 1
+      return v
+    }
+    function frame(f,   b) {
+      if (f in su) return su[f]
+      b = f; sub(/\..*/, "", b)
+      return (b in su) ? su[b] : 0
+    }
+    function deep(f,   n, i, g, d, best, bestp, out) {
+      if (f in memo) return memo[f]
+      if (onstack[f]) return 0
+      onstack[f] = 1
+      best = 0; bestp = ""
+      n = split(edge[f], out, " ")
+      for (i = 1; i <= n; i++) {
+        g = out[i]
+        d = deep(g)
+        if (d > best) { best = d; bestp = path[g] }
+      }
+      if (indirect[f]) for (g in taken) if (!onstack[g]) {
+        d = deep(g)
+        if (d > best) { best = d; bestp = path[g] }
+      }
+      onstack[f] = 0
+      memo[f] = frame(f) + best
+      path[f] = f "(" frame(f) ")" (bestp == "" ? "" : " > " bestp)
+      return memo[f]
+    }
+    /^SU\t/ { split($0, c, "\t"); n = split(c[2], loc, ":"); name = loc[n]
+               if (!(name in su) || c[3] + 0 > su[name]) su[name] = c[3] + 0; next }
+    /^[0-9a-f]+ <[^>]+>:$/ { fn = $0; sub(/^[0-9a-f]+ </, "", fn); sub(/>:$/, "", fn)
+                             start[fn] = hex(substr($0, 1, index($0, " ") - 1)); next }
+    fn != "" && match($0, /\t(bl|b|b\.w|b\.n)[ \t]+[0-9a-f]+ <[^>+]+>/) {
+      t = substr($0, RSTART, RLENGTH); sub(/.*</, "", t); sub(/>.*/, "", t)
+      if (t != fn) edge[fn] = edge[fn] " " t
+      next
+    }
+    fn != "" && /\t(blx|bx)[ \t]+r[0-9]+$/ { indirect[fn] = 1; next }
+    fn != "" && match($0, /\.word[ \t]+0x[0-9a-f]+/) { words[substr($0, RSTART + 6)] = 1 }
+    END {
+      for (w in words) { v = hex(w); if (v % 2 == 1) addr[v - 1] = 1 }
+      for (f in start) if (start[f] in addr) taken[f] = 1
+      main = deep("Reset_Handler"); mainp = path["Reset_Handler"]
+      irq = 0; irqp = "none"
+      for (f in start) if (f ~ /_irq$/) {
+        d = deep(f); if (d > irq) { irq = d; irqp = path[f] }
+      }
+      print main "\t" mainp "\t" irq "\t" irqp
+    }'
+}
+
 status=0
 for elf in "$@"; do
   echo "== $elf"
@@ -53,6 +121,16 @@ for elf in "$@"; do
   printf '  flash %d bytes (%s KiB), RAM %d bytes (data %d, bss %d); device object %s bytes\n' \
     $((text + data)) "$(awk -v b=$((text + data)) 'BEGIN { printf "%.1f", b / 1024 }')" \
     $((data + bss)) "$data" "$bss" "${device:-?}"
+  if find "$(dirname "$elf")" -name '*.su' | grep -q .; then
+    IFS=$'\t' read -r main mainp irq irqp < <(stack_bound "$elf")
+    printf '  stack bound %d bytes: main loop %d + interrupt %d + exception frame 32 (static, -fstack-usage)\n' \
+      $((main + irq + 32)) "$main" "$irq"
+    echo "    deepest: $mainp"
+    echo "    interrupt: $irqp"
+    [ -n "$device" ] && printf '  device object + stack bound: %d bytes\n' $((device + main + irq + 32))
+  else
+    echo "  stack bound: no .su files next to the image (build with -fstack-usage)"
+  fi
   floats=$(arm-none-eabi-nm "$elf" | awk '{ print $NF }' | grep -E "$soft_float" || true)
   if [ -n "$floats" ]; then
     echo "  FAIL soft-float helpers linked: $(echo $floats)"
