@@ -30,6 +30,15 @@ static int64_t round_shift(int64_t v, unsigned n)
     return (v + ((int64_t)1 << (n - 1u))) >> n;
 }
 
+/* A 32 x 32 -> 64-bit product for the colder paths (FK, the projection's
+ * clamp, per-call constants): one out-of-line copy where xgo_mul_wide is
+ * long (Cortex-M0: about 40 bytes inline), inlined where it is one
+ * instruction. */
+static int64_t mul_cold(int32_t a, int32_t b)
+{
+    return xgo_mul_wide(a, b);
+}
+
 /* Local copy of xgo_sat32 so the hot loops can inline it. */
 static int32_t sat_i32(int64_t v)
 {
@@ -268,11 +277,11 @@ static void fk_bam(const xgo_profile_t *p, int side_y, xgo_bam_t phi, xgo_bam_t 
     xgo_sincos(t2 + g, &s12, &c12);
     xgo_sincos(phi, &sp, &cp);
     /* in the leg plane: x = -L1 sin t2 + L2 cos(t2 + g), h = L1 cos t2 + L2 sin(t2 + g) */
-    x30 = -xgo_mul_wide(l1, s2) + xgo_mul_wide(l2, c12);                                  /* um * 2^30 */
-    h4 = (int32_t)round_shift(xgo_mul_wide(l1, c2) + xgo_mul_wide(l2, s12), 30 - Q4_SHIFT); /* q4 */
+    x30 = -mul_cold(l1, s2) + mul_cold(l2, c12);                                  /* um * 2^30 */
+    h4 = (int32_t)round_shift(mul_cold(l1, c2) + mul_cold(l2, s12), 30 - Q4_SHIFT); /* q4 */
     /* about the abduction axis, in um * 2^34 */
-    wp34 = xgo_mul_wide(d * Q4_ONE, cp) + xgo_mul_wide(h4, sp);
-    z34 = -xgo_mul_wide(d * Q4_ONE, sp) + xgo_mul_wide(h4, cp);
+    wp34 = mul_cold(d * Q4_ONE, cp) + mul_cold(h4, sp);
+    z34 = -mul_cold(d * Q4_ONE, sp) + mul_cold(h4, cp);
     foot_um->x = (int32_t)round_shift(x30, 30);
     foot_um->y = (int32_t)(side_y * (round_shift(wp34, 34) - d));
     foot_um->z = (int32_t)round_shift(z34, 34);
@@ -299,7 +308,7 @@ static void solve_branch(planar_t *pl, int32_t xq, int32_t wp, int32_t z, int32_
         s->q[XGO_JOINT_ABAD] = s->q[XGO_JOINT_ABAD] < ar->lo ? ar->lo : ar->hi;
         s->phi = xgo_mdeg_to_bam(s->q[XGO_JOINT_ABAD]);
         xgo_sincos(s->phi, &sp, &cp);
-        h = (int32_t)round_shift(xgo_mul_wide(wp, sp) + xgo_mul_wide(z, cp), 30 - Q4_SHIFT);
+        h = (int32_t)round_shift(mul_cold(wp, sp) + mul_cold(z, cp), 30 - Q4_SHIFT);
         s->projected = 1;
     }
     if (planar_ik(pl, xq, h, s)) {
@@ -321,8 +330,8 @@ static void planar_init(planar_t *pl, const xgo_profile_t *p)
     pl->l1 = (int64_t)p->thigh_um * Q4_ONE;
     pl->l2 = (int64_t)p->shank_um * Q4_ONE;
     pl->knee_off = xgo_mdeg_to_bam(p->knee_offset_mdeg);
-    pl->sum_sq = xgo_mul_wide((int32_t)pl->l1, (int32_t)pl->l1) + xgo_mul_wide((int32_t)pl->l2, (int32_t)pl->l2);
-    pl->two_l1l2 = 2 * xgo_mul_wide((int32_t)pl->l1, (int32_t)pl->l2);
+    pl->sum_sq = mul_cold((int32_t)pl->l1, (int32_t)pl->l1) + mul_cold((int32_t)pl->l2, (int32_t)pl->l2);
+    pl->two_l1l2 = 2 * mul_cold((int32_t)pl->l1, (int32_t)pl->l2);
     pl->d_shift = xgo_bit_length((uint64_t)pl->two_l1l2);
     pl->d_shift = pl->d_shift > 30u ? pl->d_shift - 30u : 0u;
     pl->arcs_ready = 0;
