@@ -184,9 +184,9 @@ typedef struct xgo_odometry_s {
     int64_t x_q8;                           /* world position, 1/256 um */
     int64_t y_q8;
     uint32_t yaw;                           /* heading, binary angle (xgo_bam_t) */
+#if XGO_WITH_ODOMETRY
     int32_t yaw_sc[2];                      /* its sine and cosine, Q30 (kept with it:
                                                the tick needs them twice) */
-#if XGO_WITH_ODOMETRY
     xgo_vec3_t prev_um[XGO_LEG_COUNT];      /* last tick's feet (machine frame; z unused) */
     uint8_t prev_contact;                   /* bit leg: planted last tick */
     uint8_t have_prev;                      /* prev_* are valid */

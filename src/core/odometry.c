@@ -11,7 +11,9 @@
 void xgo_odometry_init(xgo_odometry_t *o)
 {
     memset(o, 0, sizeof *o);
+#if XGO_WITH_ODOMETRY /* the inertial model needs it too */
     xgo_sincos(o->yaw, &o->yaw_sc[0], &o->yaw_sc[1]);
+#endif
 }
 
 static int64_t round_shift64(int64_t v, unsigned n)
