@@ -35,7 +35,7 @@ for dir in "$host"/test/CMakeFiles/test_*.dir; do
   objs=$(tr ' ' '\n' <"$link" | grep '\.o$' || true)
   libs=$(tr ' ' '\n' <"$link" | grep -E '\.a$|^-l' | sed 's|.*/||' | sort -u | tr '\n' ' ')
   [ "$objs" = "CMakeFiles/$name.dir/$name.c.o" ] || continue
-  extra=$(echo "$libs" | tr ' ' '\n' | grep -vE '^(libxgo_core\.a|libxgo_test_board\.a|libxgo_test_reference\.a|libxgo_unity\.a|-lm|)$' || true)
+  extra=$(echo "$libs" | tr ' ' '\n' | grep -vE '^(libxgo_core\.a|libxgo_assert_hosted\.a|libxgo_test_board\.a|libxgo_test_board_unity\.a|libxgo_test_reference\.a|libxgo_unity\.a|-lm|)$' || true)
   [ -z "$extra" ] || continue
   [ -f "test/$name.c" ] && suites+=("$name")
 done
@@ -57,9 +57,12 @@ compile() { # SOURCE CPU-FLAGS...: object file, rebuilt when the source is newer
   common+=("$obj")
 }
 for src in src/core/*.c; do compile "$src" "${m3[@]}"; done
-for src in test/unity/unity.c test/support/board_io.c test/support/reference.c "$mcu/unit_startup.c"; do
+for src in test/unity/unity.c test/support/board_io.c test/support/board_unity.c test/support/reference.c "$mcu/unit_startup.c"; do
   compile "$src" "${m7[@]}"
 done
+# The hosted check hook as on the host: an archive, so a suite's own wins.
+arm-none-eabi-gcc "${m7[@]}" "${cflags[@]}" -c src/host/assert_hosted.c -o "$out/assert_hosted.o"
+rm -f "$out/libassert_hosted.a" && arm-none-eabi-ar rcs "$out/libassert_hosted.a" "$out/assert_hosted.o"
 
 qemu_run() { # ELF: runs it, stdout = the program's output, status = its exit status
   timeout 600 qemu-system-arm -M mps2-an500 -display none -monitor none -serial none \
@@ -72,7 +75,7 @@ for s in "${suites[@]}"; do
   elf="$out/$s.elf"
   arm-none-eabi-gcc "${m7[@]}" "${cflags[@]}" -c "test/$s.c" -o "$out/$s.o"
   arm-none-eabi-gcc "${m7[@]}" --specs=nano.specs --specs=rdimon.specs -nostartfiles \
-    -T "$mcu/unit.ld" -Wl,--gc-sections -u _printf_float "$out/$s.o" "${common[@]}" -lm -o "$elf"
+    -T "$mcu/unit.ld" -Wl,--gc-sections -u _printf_float "$out/$s.o" "${common[@]}" "$out/libassert_hosted.a" -lm -o "$elf"
   "$host/test/$s" >"$out/$s.host.out" 2>&1 && hrc=0 || hrc=$?
   qemu_run "$elf" >"$out/$s.mcu.out" 2>&1 && mrc=0 || mrc=$?
   hsum=$(grep -E '^[0-9]+ Tests [0-9]+ Failures [0-9]+ Ignored' "$out/$s.host.out" | tail -n 1 | sed "s/ *$//" || true)
