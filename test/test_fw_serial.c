@@ -282,12 +282,38 @@ static void test_back_to_back_requests_all_answered_in_order(void)
 
 /* The Bluetooth name written over the wire is saved (--state) and is there
  * again after the firmware restarts. */
+/* 1 once the flash file holds the name (the record stores it raw), polled
+ * for up to timeout_ms: the firmware saves 200 ms of its ticks after the last
+ * change, and a loaded machine runs QEMU's ticks late (skipped ones do not
+ * count), so a fixed wait of wall time is not enough. */
+static int wait_for_saved_name(const char *name, int timeout_ms)
+{
+    const size_t n = strlen(name);
+    int waited;
+    for (waited = 0; waited <= timeout_ms; waited += 50) {
+        uint8_t data[256];
+        size_t got = 0, i;
+        FILE *f = fopen(g_state, "rb");
+        if (f != NULL) {
+            got = fread(data, 1, sizeof data, f);
+            fclose(f);
+        }
+        for (i = 0; i + n <= got; i++) {
+            if (memcmp(data + i, name, n) == 0) {
+                return 1;
+            }
+        }
+        xgo_test_sleep_ms(50);
+    }
+    return 0;
+}
+
 static void test_renamed_board_keeps_its_name_across_a_restart(void)
 {
     uint8_t name[10];
     fw_start();
     write_regs(0x13, "Rex", 3);
-    xgo_test_sleep_ms(600); /* saved once it settled (200 ms) */
+    TEST_ASSERT_TRUE_MESSAGE(wait_for_saved_name("Rex", 15000), "the name never reached the flash file");
     fw_stop_with(SIGINT); /* Ctrl-C */
     fw_start();
     read_regs(0x13, sizeof name, name);
