@@ -143,17 +143,7 @@ void xgo_host_view_meta(xgo_host_json_t *w, const xgo_board_t *b, unsigned model
     xgo_host_json_array_end(w);
     xgo_host_view_meta_choices(w, "gaits", XGO_REG_GAIT_TYPE);
     xgo_host_view_meta_choices(w, "paces", XGO_REG_MOVE_MODE);
-    xgo_host_json_key(w, "joint_limits_deg");
-    xgo_host_json_array_begin(w);
-    for (i = 0; i < XGO_SERVO_COUNT; i++) {
-        int32_t lo, hi;
-        xgo_board_joint_limits_mdeg(b, i, &lo, &hi);
-        xgo_host_json_array_begin(w);
-        xgo_host_json_fixed(w, lo, 3, 3);
-        xgo_host_json_fixed(w, hi, 3, 3);
-        xgo_host_json_array_end(w);
-    }
-    xgo_host_json_array_end(w);
+    xgo_host_view_joint_limits(w, b, 3);
     xgo_host_view_meta_geometry(w, p);
     xgo_host_json_key(w, "ranges");
     xgo_host_json_object_begin(w);

@@ -30,6 +30,22 @@ static void xgo_host_view_mm(xgo_host_json_t *w, const char *key, int32_t um)
     xgo_host_json_fixed(w, um, 3, 1);
 }
 
+void xgo_host_view_joint_limits(xgo_host_json_t *w, const xgo_board_t *b, unsigned decimals)
+{
+    unsigned i;
+    xgo_host_json_key(w, "joint_limits_deg");
+    xgo_host_json_array_begin(w);
+    for (i = 0; i < XGO_SERVO_COUNT; i++) {
+        int32_t lo, hi;
+        xgo_board_joint_limits_mdeg(b, i, &lo, &hi);
+        xgo_host_json_array_begin(w);
+        xgo_host_json_fixed(w, lo, 3, decimals);
+        xgo_host_json_fixed(w, hi, 3, decimals);
+        xgo_host_json_array_end(w);
+    }
+    xgo_host_json_array_end(w);
+}
+
 static void xgo_host_view_joints(xgo_host_json_t *w, const xgo_board_t *b)
 {
     int32_t joints[XGO_SERVO_COUNT];
@@ -41,17 +57,7 @@ static void xgo_host_view_joints(xgo_host_json_t *w, const xgo_board_t *b)
         xgo_host_json_fixed(w, joints[i], 3, 2);
     }
     xgo_host_json_array_end(w);
-    xgo_host_json_key(w, "joint_limits_deg");
-    xgo_host_json_array_begin(w);
-    for (i = 0; i < XGO_SERVO_COUNT; i++) {
-        int32_t lo, hi;
-        xgo_board_joint_limits_mdeg(b, i, &lo, &hi);
-        xgo_host_json_array_begin(w);
-        xgo_host_json_fixed(w, lo, 3, 2);
-        xgo_host_json_fixed(w, hi, 3, 2);
-        xgo_host_json_array_end(w);
-    }
-    xgo_host_json_array_end(w);
+    xgo_host_view_joint_limits(w, b, 2);
 }
 
 static void xgo_host_view_feet(xgo_host_json_t *w, const xgo_board_t *b)

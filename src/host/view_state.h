@@ -26,6 +26,10 @@ void xgo_host_view_state_open(xgo_host_json_t *w, const xgo_board_t *b, uint64_t
 /* Name of a value of the mode register ("whole unit", ...). */
 const char *xgo_host_view_mode_name(uint8_t mode);
 
+/* "joint_limits_deg": [[lo, hi] x 12] in degrees with `decimals` decimals
+ * (/state: 2, like the angles; /meta: 3, the limits' own resolution). */
+void xgo_host_view_joint_limits(xgo_host_json_t *w, const xgo_board_t *b, unsigned decimals);
+
 /* Writes "frames" (the events from *cursor on, at most
  * XGO_HOST_VIEW_FRAMES_PER_EVENT, the newest kept), "frames_omitted" and
  * the closing brace, and moves *cursor past the newest event. */
