@@ -775,9 +775,10 @@ static void random_commands(uint32_t seed, int with_yaw, long ticks)
  * speed. Measured in the tick of each lift-off and touchdown, as the foot's
  * speed over the ground in that tick (its motion in the body plus
  * (v + w x p) dt): at every steady command of the vendor grid (corners and
- * axes, every gait) at most 20 mm/s; the walks at their fastest corner
- * (231 ms cycles, 58 ms swings) reach 20.4 mm/s, hence 21 there. The
- * cosine swing before measured the full stance speed, 250 mm/s at 250 mm/s. */
+ * axes, every gait) at most 20 mm/s. Measured: trot 1.9, slow trot 4.0,
+ * walks 8.4 mm/s at their fastest corner (231 ms cycles, 29-tick swings;
+ * 20.4 before the swing's end dwells). The cosine swing before measured the
+ * full stance speed, 250 mm/s at 250 mm/s. */
 static void test_swing_feet_leave_and_meet_the_ground_at_its_speed(void)
 {
     static const int32_t vx[] = {-250, 0, 250}, vy[] = {-180, 0, 180}, w[] = {-100, 0, 100};
@@ -799,7 +800,7 @@ static void test_swing_feet_leave_and_meet_the_ground_at_its_speed(void)
         }
         snprintf(msg, sizeof msg, "gait %u: ground speed at lift-off or touchdown %.1f mm/s", type,
                  worst[type]);
-        TEST_ASSERT_TRUE_MESSAGE(worst[type] <= (trot_family((uint8_t)type) ? 20.0 : 21.0), msg);
+        TEST_ASSERT_TRUE_MESSAGE(worst[type] <= 20.0, msg);
         TEST_MESSAGE(msg);
     }
 }

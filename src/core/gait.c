@@ -54,6 +54,13 @@
 /* Swing S = sn/sd: S * 2^40 / TICKS_PER_S, so that k_swing / (rate >> 8) is
  * the swing's duration in s Q16 (S of a cycle of 2^32 / (rate TICKS_PER_S) s). */
 #define KSWING(sn, sd) ((uint32_t)((1099511627776ULL * (uint64_t)(sn)) / ((uint64_t)TICKS_PER_S * (sd))))
+/* Dwell delta (Q26) of a quarter tick at the shortest period ms of a swing
+ * S = sn/sd: 1 / (4 S ms TICKS_PER_S / 1000), and its gain 1 / (1 - 2 delta)
+ * (Q26). The trots' swings last >= 56 ticks: no dwell (docs/gait.md). */
+#define KDWELL(ms, sn, sd) \
+    ((int32_t)((1000ULL << 26) * (uint64_t)(sd) / (4ULL * (sn) * (ms) * (uint64_t)TICKS_PER_S)))
+#define KDWELL_GAIN(ms, sn, sd) ((int32_t)((1ULL << 52) / ((1ULL << 26) - 2ULL * (uint64_t)KDWELL(ms, sn, sd))))
+#define NO_DWELL 0, (1 << 26)
 
 /* Trot: diagonal pairs LF+RH and RF+LH half a cycle apart, duty 0.5.
  * Walk: lateral sequence LH, LF, RH, RF, a quarter cycle apart, duty 0.75.
@@ -65,19 +72,19 @@ static const gait_table_t k_tables[XGO_GAIT_TYPE_COUNT] = {
     /* XGO_GAIT_TROT */
     { Q32(1, 2), 2u << 16, TROT_LIFT, KRATE(1, 2), KTAU(1, 2), KSWING(1, 2),
       { RATE(400), RATE(600), RATE(300) }, RATE(240), KHALF(240), { 400, 600, 300 },
-      20000, 0, 50 },
+      20000, 0, 50, NO_DWELL },
     /* XGO_GAIT_WALK */
     { Q32(1, 4), 4u << 16, WALK_LIFT, KRATE(3, 4), KTAU(3, 4), KSWING(1, 4),
       { RATE(800), RATE(1200), RATE(600) }, RATE(220), KHALF(220), { 800, 1200, 600 },
-      20000, 1, 75 },
+      20000, 1, 75, KDWELL(220, 1, 4), KDWELL_GAIN(220, 1, 4) },
     /* XGO_GAIT_HIGH_WALK: the walk's timing, a higher swing */
     { Q32(1, 4), 4u << 16, WALK_LIFT, KRATE(3, 4), KTAU(3, 4), KSWING(1, 4),
       { RATE(800), RATE(1200), RATE(600) }, RATE(220), KHALF(220), { 800, 1200, 600 },
-      30000, 1, 75 },
+      30000, 1, 75, KDWELL(220, 1, 4), KDWELL_GAIN(220, 1, 4) },
     /* XGO_GAIT_SLOW_TROT: trot pairs, duty 0.6, longer periods */
     { Q32(2, 5), (5u << 16) / 2u, TROT_LIFT, KRATE(3, 5), KTAU(3, 5), KSWING(2, 5),
       { RATE(600), RATE(800), RATE(450) }, RATE(280), KHALF(280), { 600, 800, 450 },
-      20000, 2, 60 },
+      20000, 2, 60, NO_DWELL },
 };
 
 /* um/s -> 1/256 um per tick: 256 / TICKS_PER_S * 2^31, rounded (applied
@@ -653,27 +660,43 @@ static void land_point(xgo_gait_t *g, int leg, int32_t u, int32_t td[2])
 }
 
 /* Swing: from the lift-off point to the touchdown point (which tracks the
- * velocity) on a quintic Hermite curve in the swing progress psi: at both
- * ends the foot moves like a planted one - velocity -(v + w x p) (the end
- * tangents, times the swing time) and no acceleration relative to it - so
- * it leaves and meets the ground at the ground's speed, without skimming;
- * lifted on a sin^2 arc to the latched height. Basis in Q26 (psi < 1):
- *   h(u) = u^3 (10 - 15u + 6u^2)         0 -> 1
- *   a(u) = u + u^3 (-6 + 8u - 3u^2)      start tangent
- *   b(u) = u^3 (-4 + 7u - 3u^2)          end tangent */
+ * velocity) on a quintic Hermite curve: at both ends the foot moves like a
+ * planted one - velocity -(v + w x p) (the end tangents, times the swing
+ * time) and no acceleration relative to it - so it leaves and meets the
+ * ground at the ground's speed, without skimming; lifted on a sin^2 arc in
+ * the swing progress psi to the latched height. The curve's cubic term still
+ * moves the foot over the ground in the tick of a lift-off or touchdown
+ * (20 mm/s in the walks' 29-tick swings), so for a dwell delta at either end
+ * (a quarter tick at the fastest cadence) the foot only rises and moves with
+ * the ground, and the curve runs in w = (psi - delta) / (1 - 2 delta) from
+ * p_lift + m0 delta to p_land - m1 delta. Basis in Q26 (w <= 1):
+ *   h(w) = w^3 (10 - 15w + 6w^2)         0 -> 1
+ *   a(w) = w + w^3 (-6 + 8w - 3w^2)      start tangent
+ *   b(w) = w^3 (-4 + 7w - 3w^2)          end tangent */
 static void swing_step(xgo_gait_t *g, gait_tick_t *x, int leg)
 {
     const int32_t one = 1 << 26;
+    const int32_t dw = x->t->dwell_q26;
     int32_t td[2], f0[2], f1[2];
     uint32_t theta = g->phase - x->t->lift[leg];
     uint32_t psi = (uint32_t)(xgo_umul_wide(theta, x->t->inv_swing_q16) >> 16);
     const int32_t u = (int32_t)(psi >> 6);
-    const int32_t u2 = mul_q(u, u, 26u), u3 = mul_q(u2, u, 26u);
-    const int32_t h = mul_q(u3, 10 * one - 15 * u + 6 * u2, 26u);
-    const int32_t a = u + mul_q(u3, -6 * one + 8 * u - 3 * u2, 26u);
-    const int32_t b = mul_q(u3, -4 * one + 7 * u - 3 * u2, 26u);
+    const int32_t w = dw == 0 ? u : clamp32(mul_q(u - dw, x->t->dwell_gain_q26, 26u), 0, one);
+    const int32_t w2 = mul_q(w, w, 26u), w3 = mul_q(w2, w, 26u);
+    const int32_t h = mul_q(w3, 10 * one - 15 * w + 6 * w2, 26u);
+    const int32_t a = w + mul_q(w3, -6 * one + 8 * w - 3 * w2, 26u);
+    const int32_t b = mul_q(w3, -4 * one + 7 * w - 3 * w2, 26u);
+    int32_t ca = a, cb = b;
     xgo_q30_t s, co;
     int c;
+    if (dw != 0) {
+        /* p = p_lift + D h + m0 A + m1 B (D = p_land - p_lift); with the
+         * dwells A = (1 - 2 delta) a - delta h + min(psi, delta) and
+         * B = (1 - 2 delta) b - delta h + max(psi - 1 + delta, 0) */
+        const int32_t dh = mul_q(h, dw, 26u);
+        ca = a - mul_q(a, 2 * dw, 26u) - dh + (u < dw ? u : dw);
+        cb = b - mul_q(b, 2 * dw, 26u) - dh + (u > one - dw ? u - (one - dw) : 0);
+    }
     touchdown_q8(g, x, leg, td);
     land_point(g, leg, u, td);
     foot_velocity(x->vel, x->w_q24, g->lift_q8[leg][0] >> 8, g->lift_q8[leg][1] >> 8, f0);
@@ -683,7 +706,7 @@ static void swing_step(xgo_gait_t *g, gait_tick_t *x, int leg)
         const int32_t m0 = -mul_q(f0[c], (int32_t)x->swing_q16, 8u);
         const int32_t m1 = -mul_q(f1[c], (int32_t)x->swing_q16, 8u);
         g->pos_q8[leg][c] = g->lift_q8[leg][c] + mul_q(td[c] - g->lift_q8[leg][c], h, 26u) +
-                            mul_q(m0, a, 26u) + mul_q(m1, b, 26u);
+                            mul_q(m0, ca, 26u) + mul_q(m1, cb, 26u);
     }
     xgo_sincos(psi >> 1, &s, &co); /* angle pi * psi */
     x->z_um[leg] = mul_q(g->swing_height_um[leg], mul_q(s, s, 30u), 30u);

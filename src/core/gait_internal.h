@@ -32,6 +32,9 @@ typedef struct gait_table_s {
     int32_t height_um;      /* swing height */
     uint8_t timing;         /* tables with the same timing switch at once */
     uint8_t duty_pct;
+    int32_t dwell_q26;      /* delta: share of the swing at either end in which the foot
+                               moves with the ground (rises only), Q26; see swing_step */
+    int32_t dwell_gain_q26; /* 1 / (1 - 2 delta), Q26 */
 } gait_table_t;
 
 /* One tick's working state, filled stage by stage (xgo_gait_tick). */
