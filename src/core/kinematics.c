@@ -417,8 +417,7 @@ static int32_t dot30(int32_t a, int32_t b, int32_t c, int32_t d)
     return v > XGO_Q30_ONE ? XGO_Q30_ONE : (v < -XGO_Q30_ONE ? -XGO_Q30_ONE : (int32_t)v);
 }
 
-/* R = Rz(yaw) Ry(pitch) Rx(roll) in Q30. */
-static void pose_matrix(const xgo_body_pose_t *pose, xgo_q30_t m[3][3])
+void xgo_body_rotation(const xgo_body_pose_t *pose, xgo_q30_t rot[XGO_ROT_COUNT])
 {
     xgo_q30_t sr, cr, sp, cp, sy, cy;
     int32_t cysp, sysp;
@@ -427,15 +426,15 @@ static void pose_matrix(const xgo_body_pose_t *pose, xgo_q30_t m[3][3])
     xgo_sincos(xgo_mdeg_to_bam(pose->yaw_mdeg), &sy, &cy);
     cysp = mul30(cy, sp);
     sysp = mul30(sy, sp);
-    m[0][0] = mul30(cy, cp);
-    m[0][1] = dot30(cysp, sr, -sy, cr);
-    m[0][2] = dot30(cysp, cr, sy, sr);
-    m[1][0] = mul30(sy, cp);
-    m[1][1] = dot30(sysp, sr, cy, cr);
-    m[1][2] = dot30(sysp, cr, -cy, sr);
-    m[2][0] = -sp;
-    m[2][1] = mul30(cp, sr);
-    m[2][2] = mul30(cp, cr);
+    rot[XGO_ROT(0, 0)] = mul30(cy, cp);
+    rot[XGO_ROT(0, 1)] = dot30(cysp, sr, -sy, cr);
+    rot[XGO_ROT(0, 2)] = dot30(cysp, cr, sy, sr);
+    rot[XGO_ROT(1, 0)] = mul30(sy, cp);
+    rot[XGO_ROT(1, 1)] = dot30(sysp, sr, cy, cr);
+    rot[XGO_ROT(1, 2)] = dot30(sysp, cr, -cy, sr);
+    rot[XGO_ROT(2, 0)] = -sp;
+    rot[XGO_ROT(2, 1)] = mul30(cp, sr);
+    rot[XGO_ROT(2, 2)] = mul30(cp, cr);
 }
 
 /* The thigh joint of a leg (leg frame origin) in the body frame. */
@@ -449,9 +448,17 @@ void xgo_body_ik(const xgo_profile_t *p, const xgo_body_pose_t *pose,
                  const xgo_vec3_t feet_machine_um[XGO_LEG_COUNT],
                  xgo_vec3_t feet_leg_um[XGO_LEG_COUNT])
 {
-    xgo_q30_t m[3][3];
+    xgo_q30_t rot[XGO_ROT_COUNT];
+    xgo_body_rotation(pose, rot);
+    xgo_body_ik_rotated(p, pose, rot, feet_machine_um, feet_leg_um);
+}
+
+void xgo_body_ik_rotated(const xgo_profile_t *p, const xgo_body_pose_t *pose,
+                         const xgo_q30_t rot[XGO_ROT_COUNT],
+                         const xgo_vec3_t feet_machine_um[XGO_LEG_COUNT],
+                         xgo_vec3_t feet_leg_um[XGO_LEG_COUNT])
+{
     int leg;
-    pose_matrix(pose, m);
     for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
         /* foot relative to the body centre, in machine axes, saturated to
          * int32 so the products below stay within 2^61 */
@@ -459,9 +466,9 @@ void xgo_body_ik(const xgo_profile_t *p, const xgo_body_pose_t *pose,
         int32_t vy = sat_i32((int64_t)feet_machine_um[leg].y - pose->y_um);
         int32_t vz = sat_i32((int64_t)feet_machine_um[leg].z - pose->z_um);
         /* into body axes: R^T v; each term < 2^61, the sum < 2^63 */
-        int64_t bx = round_shift(xgo_mul_wide(m[0][0], vx) + xgo_mul_wide(m[1][0], vy) + xgo_mul_wide(m[2][0], vz), 30);
-        int64_t by = round_shift(xgo_mul_wide(m[0][1], vx) + xgo_mul_wide(m[1][1], vy) + xgo_mul_wide(m[2][1], vz), 30);
-        int64_t bz = round_shift(xgo_mul_wide(m[0][2], vx) + xgo_mul_wide(m[1][2], vy) + xgo_mul_wide(m[2][2], vz), 30);
+        int64_t bx = round_shift(xgo_mul_wide(rot[XGO_ROT(0, 0)], vx) + xgo_mul_wide(rot[XGO_ROT(1, 0)], vy) + xgo_mul_wide(rot[XGO_ROT(2, 0)], vz), 30);
+        int64_t by = round_shift(xgo_mul_wide(rot[XGO_ROT(0, 1)], vx) + xgo_mul_wide(rot[XGO_ROT(1, 1)], vy) + xgo_mul_wide(rot[XGO_ROT(2, 1)], vz), 30);
+        int64_t bz = round_shift(xgo_mul_wide(rot[XGO_ROT(0, 2)], vx) + xgo_mul_wide(rot[XGO_ROT(1, 2)], vy) + xgo_mul_wide(rot[XGO_ROT(2, 2)], vz), 30);
         /* into the leg frame: origin at the thigh joint, z down */
         int32_t ox, oy;
         leg_origin(p, leg, &ox, &oy);
@@ -484,14 +491,21 @@ void xgo_leg_to_body(const xgo_profile_t *p, xgo_leg_t leg, const xgo_vec3_t *fo
 void xgo_body_to_machine(const xgo_body_pose_t *pose, const xgo_vec3_t body_um[XGO_LEG_COUNT],
                          xgo_vec3_t machine_um[XGO_LEG_COUNT])
 {
-    xgo_q30_t m[3][3];
+    xgo_q30_t rot[XGO_ROT_COUNT];
+    xgo_body_rotation(pose, rot);
+    xgo_body_to_machine_rotated(pose, rot, body_um, machine_um);
+}
+
+void xgo_body_to_machine_rotated(const xgo_body_pose_t *pose, const xgo_q30_t rot[XGO_ROT_COUNT],
+                                 const xgo_vec3_t body_um[XGO_LEG_COUNT],
+                                 xgo_vec3_t machine_um[XGO_LEG_COUNT])
+{
     int leg;
-    pose_matrix(pose, m);
     for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
         const int32_t bx = body_um[leg].x, by = body_um[leg].y, bz = body_um[leg].z;
-        machine_um[leg].x = sat_i32(round_shift(xgo_mul_wide(m[0][0], bx) + xgo_mul_wide(m[0][1], by) + xgo_mul_wide(m[0][2], bz), 30) + pose->x_um);
-        machine_um[leg].y = sat_i32(round_shift(xgo_mul_wide(m[1][0], bx) + xgo_mul_wide(m[1][1], by) + xgo_mul_wide(m[1][2], bz), 30) + pose->y_um);
-        machine_um[leg].z = sat_i32(round_shift(xgo_mul_wide(m[2][0], bx) + xgo_mul_wide(m[2][1], by) + xgo_mul_wide(m[2][2], bz), 30) + pose->z_um);
+        machine_um[leg].x = sat_i32(round_shift(xgo_mul_wide(rot[XGO_ROT(0, 0)], bx) + xgo_mul_wide(rot[XGO_ROT(0, 1)], by) + xgo_mul_wide(rot[XGO_ROT(0, 2)], bz), 30) + pose->x_um);
+        machine_um[leg].y = sat_i32(round_shift(xgo_mul_wide(rot[XGO_ROT(1, 0)], bx) + xgo_mul_wide(rot[XGO_ROT(1, 1)], by) + xgo_mul_wide(rot[XGO_ROT(1, 2)], bz), 30) + pose->y_um);
+        machine_um[leg].z = sat_i32(round_shift(xgo_mul_wide(rot[XGO_ROT(2, 0)], bx) + xgo_mul_wide(rot[XGO_ROT(2, 1)], by) + xgo_mul_wide(rot[XGO_ROT(2, 2)], bz), 30) + pose->z_um);
     }
 }
 

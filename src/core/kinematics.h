@@ -73,11 +73,24 @@ int xgo_leg_ik(const xgo_profile_t *p, xgo_leg_t leg, const xgo_vec3_t *foot_um,
 void xgo_leg_fk(const xgo_profile_t *p, xgo_leg_t leg, const int32_t q_mdeg[XGO_JOINT_COUNT],
                 xgo_vec3_t *foot_um);
 
+/* The body pose's rotation R = Rz(yaw) Ry(pitch) Rx(roll) in Q30, row
+ * major: R(row, col) is rot[XGO_ROT(row, col)]. It depends on the three
+ * angles only; a caller that keeps it (the motion's IK cache) spares the
+ * three sines and cosines when it maps the same pose again. */
+#define XGO_ROT_COUNT 9
+#define XGO_ROT(row, col) (3 * (row) + (col))
+void xgo_body_rotation(const xgo_body_pose_t *pose, xgo_q30_t rot[XGO_ROT_COUNT]);
+
 /* Body IK: feet in the machine frame (on the ground or anywhere) and the
  * body pose -> each foot in its leg frame. Coordinates saturate at +-2147 m. */
 void xgo_body_ik(const xgo_profile_t *p, const xgo_body_pose_t *pose,
                  const xgo_vec3_t feet_machine_um[XGO_LEG_COUNT],
                  xgo_vec3_t feet_leg_um[XGO_LEG_COUNT]);
+/* The same with rot = xgo_body_rotation(pose) already worked out. */
+void xgo_body_ik_rotated(const xgo_profile_t *p, const xgo_body_pose_t *pose,
+                         const xgo_q30_t rot[XGO_ROT_COUNT],
+                         const xgo_vec3_t feet_machine_um[XGO_LEG_COUNT],
+                         xgo_vec3_t feet_leg_um[XGO_LEG_COUNT]);
 
 /* The inverse direction, for measuring where the feet are (odometry, the
  * live view): a foot in its leg frame -> the body frame (origin at the body
@@ -87,6 +100,9 @@ void xgo_leg_to_body(const xgo_profile_t *p, xgo_leg_t leg, const xgo_vec3_t *fo
                      xgo_vec3_t *foot_body_um);
 void xgo_body_to_machine(const xgo_body_pose_t *pose, const xgo_vec3_t body_um[XGO_LEG_COUNT],
                          xgo_vec3_t machine_um[XGO_LEG_COUNT]);
+void xgo_body_to_machine_rotated(const xgo_body_pose_t *pose, const xgo_q30_t rot[XGO_ROT_COUNT],
+                                 const xgo_vec3_t body_um[XGO_LEG_COUNT],
+                                 xgo_vec3_t machine_um[XGO_LEG_COUNT]);
 
 /* Body IK then leg IK for all four legs. Returns a bit mask of the legs
  * whose target was projected (bit n = leg index n); 0 when all reached. */

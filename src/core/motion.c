@@ -103,7 +103,8 @@ static void solve_joints(xgo_motion_t *m, const xgo_body_pose_t *pose,
         m->ik_cache.pose = *pose;
         memcpy(m->ik_cache.feet, feet, sizeof m->ik_cache.feet);
         unsigned leg;
-        xgo_body_ik(m->profile, pose, feet, m->ik_cache.feet_leg);
+        xgo_body_rotation(pose, m->ik_cache.rot_q30);
+        xgo_body_ik_rotated(m->profile, pose, m->ik_cache.rot_q30, feet, m->ik_cache.feet_leg);
         m->ik_cache.projected = 0;
         for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
             if (xgo_leg_ik(m->profile, (xgo_leg_t)leg, &m->ik_cache.feet_leg[leg],
@@ -129,6 +130,24 @@ static void feet_of_joints(const xgo_motion_t *m, xgo_vec3_t body[XGO_LEG_COUNT]
     }
 }
 
+/* board_state.h cannot see kinematics.h: the cache's size is checked here. */
+typedef char xgo_motion_rot_cache_check_[sizeof((xgo_motion_t *)0)->ik_cache.rot_q30 ==
+                                         XGO_ROT_COUNT * sizeof(xgo_q30_t) ? 1 : -1];
+
+/* The rotation of m->pose: the IK cache's when the last solve had the same
+ * angles (the pose of this tick, in the whole-unit and action modes), else
+ * worked out into scratch. */
+static const xgo_q30_t *pose_rotation(const xgo_motion_t *m, xgo_q30_t scratch[XGO_ROT_COUNT])
+{
+    const xgo_body_pose_t *c = &m->ik_cache.pose;
+    if (m->ik_cache.valid && c->roll_mdeg == m->pose.roll_mdeg &&
+        c->pitch_mdeg == m->pose.pitch_mdeg && c->yaw_mdeg == m->pose.yaw_mdeg) {
+        return m->ik_cache.rot_q30;
+    }
+    xgo_body_rotation(&m->pose, scratch);
+    return scratch;
+}
+
 /* The feet in the machine frame as the joints put them now (FK, with this
  * tick's body pose), and which are down: those within 1 mm of the lowest. */
 static uint8_t measured_feet(const xgo_motion_t *m, xgo_vec3_t machine[XGO_LEG_COUNT])
@@ -137,8 +156,9 @@ static uint8_t measured_feet(const xgo_motion_t *m, xgo_vec3_t machine[XGO_LEG_C
     int32_t low = INT32_MAX;
     uint8_t contact = 0;
     unsigned leg;
+    xgo_q30_t rot[XGO_ROT_COUNT];
     feet_of_joints(m, body);
-    xgo_body_to_machine(&m->pose, body, machine);
+    xgo_body_to_machine_rotated(&m->pose, pose_rotation(m, rot), body, machine);
     for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
         low = machine[leg].z < low ? machine[leg].z : low;
     }
@@ -455,8 +475,9 @@ static void measure_feet(xgo_motion_t *m, int contact_known)
         memcpy(machine, m->ik_cache.feet, sizeof machine);
     } else {
         xgo_vec3_t body[XGO_LEG_COUNT];
+        xgo_q30_t rot[XGO_ROT_COUNT];
         feet_of_joints(m, body);
-        xgo_body_to_machine(&m->pose, body, machine);
+        xgo_body_to_machine_rotated(&m->pose, pose_rotation(m, rot), body, machine);
     }
     for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
         low = machine[leg].z < low ? machine[leg].z : low;
