@@ -432,7 +432,7 @@ static void test_save_load_missing_and_permissions(void)
 static void test_failed_save_leaves_the_old_file(void)
 {
     xgo_board_nv_t nv = nv_example();
-    char before[512], after[512], tmp[160], why[300] = "";
+    char before[512], after[512], tmp[256], why[300] = "";
     struct rlimit saved, small;
     int rc;
     TEST_ASSERT_EQUAL_INT(0, xgo_host_state_save(g_state, &nv, why, sizeof why));

@@ -201,8 +201,7 @@ int xgo_reg_value_to_byte(const xgo_profile_t *p, uint8_t addr, int32_t value, u
         *b = 0;
         return XGO_REG_VALUE_OK;
     }
-    (void)xgo_reg_value_range(p, addr, &lo, &hi);
-    if (value < lo || value > hi) {
+    if (!xgo_reg_value_range(p, addr, &lo, &hi) || value < lo || value > hi) {
         return XGO_REG_VALUE_OUT_OF_RANGE;
     }
     for (i = has_off_byte(&s) ? 1u : 0u; i < 256u; i++) {
