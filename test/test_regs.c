@@ -234,6 +234,34 @@ static void test_lite_identity(void)
     TEST_ASSERT_EQUAL_HEX8('L', fw[0]);
 }
 
+/* The board's per-address lookup (a start table in flash, searched back
+ * from the address) gives, for every address of every model, the row that
+ * comes first in table order (xgo_reg_find_model, a plain scan); and the
+ * overlaps the table has land where docs/registers.md puts them. */
+static void test_every_address_finds_the_first_row_of_its_model(void)
+{
+    static const uint8_t versions[] = {0x00, XGO_VERSION_LITE, XGO_VERSION_MINI2};
+    size_t v;
+    unsigned a;
+    for (v = 0; v < sizeof versions; v++) {
+        const int arm = versions[v] == XGO_VERSION_MINI2;
+        xgo_regs_init(&regs, "M-EMU-0.1", versions[v]);
+        for (a = 0; a < XGO_REG_COUNT; a++) {
+            TEST_ASSERT_TRUE_MESSAGE(xgo_regs_find(&regs, (uint8_t)a) == xgo_reg_find_model((uint8_t)a, arm),
+                                     "row of an address");
+        }
+        TEST_ASSERT_EQUAL_HEX8(XGO_REG_GAIT_TYPE, xgo_regs_find(&regs, 0x09)->addr);
+        TEST_ASSERT_EQUAL_HEX8(XGO_REG_FIRMWARE, xgo_regs_find(&regs, 0x0A)->addr);
+        TEST_ASSERT_EQUAL_HEX8(XGO_REG_FIRMWARE, xgo_regs_find(&regs, 0x10)->addr);
+        TEST_ASSERT_NULL(xgo_regs_find(&regs, 0x11));
+        TEST_ASSERT_EQUAL_HEX8(XGO_REG_DIAG, xgo_regs_find(&regs, 0xFF)->addr);
+        TEST_ASSERT_NULL(xgo_regs_find(&regs, 0xC3));
+        TEST_ASSERT_EQUAL_UINT8(arm ? XGO_REGF_ARM : XGO_REGF_AUTO_CLEAR_NO_ARM,
+                                xgo_regs_find(&regs, 0x5D)->flags);
+        TEST_ASSERT_TRUE(arm ? xgo_regs_find(&regs, 0x77) != NULL : xgo_regs_find(&regs, 0x77) == NULL);
+    }
+}
+
 static void read_name(char out[11])
 {
     TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_read(&regs, 0x13, 10, (uint8_t *)out));
@@ -609,6 +637,7 @@ int main(void)
     RUN_TEST(test_firmware_window_and_gait_type_share_0x09);
     RUN_TEST(test_firmware_is_read_only);
     RUN_TEST(test_lite_identity);
+    RUN_TEST(test_every_address_finds_the_first_row_of_its_model);
     RUN_TEST(test_bluetooth_name);
     RUN_TEST(test_bluetooth_name_rejects_bad_input);
     RUN_TEST(test_restore_initial_keeps_nonvolatile_and_identity);

@@ -38,7 +38,6 @@ typedef struct xgo_regs_stats_s {
 
 typedef struct xgo_regs_s {
     uint8_t mem[XGO_REG_COUNT];      /* flat image; unmapped addresses stay 0 */
-    uint8_t index[XGO_REG_COUNT];    /* descriptor index per address, 0xFF = unmapped */
     uint8_t written[XGO_REG_COUNT / 8]; /* bit per address: written since last taken */
     char firmware[XGO_FIRMWARE_LEN]; /* NUL padded ASCII */
     int32_t attitude_mdeg[3];        /* roll, pitch, yaw in millidegrees */

@@ -110,7 +110,7 @@ static uint8_t count_unmapped(const xgo_regs_t *r, const xgo_frame_t *f)
     uint8_t n = 0;
     unsigned i;
     for (i = 0; i < f->len; i++) {
-        if (r->index[(f->addr + i) & 0xFFu] == 0xFFu) {
+        if (xgo_regs_find(r, (uint8_t)(f->addr + i)) == NULL) {
             n++;
         }
     }

@@ -12,8 +12,6 @@
 #include "regfile.h"
 #include "xgo/profile.h"
 
-#define UNMAPPED 0xFFu
-
 /* Flags column: 0 or a XGO_REGF_ suffix. */
 #define XGO_REGF_0 0u
 
@@ -58,6 +56,68 @@ int xgo_reg_for_model(const xgo_reg_desc_t *d, int arm)
 static int for_model(const xgo_reg_desc_t *d, int arm)
 {
     return xgo_reg_for_model(d, arm);
+}
+
+/* Row numbers of k_regs, for the start table below. */
+enum reg_row_e {
+#define REG_ROW_(id, a, w, acc, fl, init, v, l, h, nm) REG_ROW_##id,
+    XGO_REG_LIST(REG_ROW_)
+#undef REG_ROW_
+    REG_ROWS_
+};
+typedef char xgo_reg_rows_fit_byte_[REG_ROWS_ < 0xFF ? 1 : -1];
+
+/* No row is wider than the OR of all the widths. */
+enum {
+#define REG_WIDTH_OR_(id, a, w, acc, fl, init, v, l, h, nm) | (w)
+    REG_WIDTH_BOUND = 0 XGO_REG_LIST(REG_WIDTH_OR_)
+#undef REG_WIDTH_OR_
+};
+
+/* Where each row starts, a constant in flash rather than a per-address map
+ * in every board's RAM: k_start[addr] = row + 1 for rows on every model or
+ * on the models without the arm, k_start[XGO_REG_COUNT + addr] for the
+ * arm's rows (they take addresses the Mini uses otherwise); 0: no row
+ * starts there. Two rows of one half starting at one address would be a
+ * repeated initializer (-Woverride-init, an error with -Werror). */
+#define REG_START_SLOT_(fl, a) \
+    ((((XGO_REGF_##fl + 0u) & XGO_REGF_ARM) != 0u ? XGO_REG_COUNT : 0u) + (unsigned)(a))
+static const uint8_t k_start[] = {
+#define REG_START_(id, a, w, acc, fl, init, v, l, h, nm) [REG_START_SLOT_(fl, a)] = REG_ROW_##id + 1,
+    XGO_REG_LIST(REG_START_)
+#undef REG_START_
+};
+
+/* The row that starts at `start` in one half of k_start and covers addr on
+ * this model, or NULL. */
+static const xgo_reg_desc_t *row_at(const xgo_regs_t *r, unsigned slot, unsigned addr)
+{
+    const xgo_reg_desc_t *d;
+    if (slot >= sizeof k_start || k_start[slot] == 0u) {
+        return NULL;
+    }
+    d = &k_regs[k_start[slot] - 1u];
+    return for_model(d, r->arm) && addr < (unsigned)d->addr + d->width ? d : NULL;
+}
+
+/* The row that holds addr on this model: the nearest one starting at or
+ * below it that covers it (the arm's first). Rows overlap only where a
+ * one-byte row sits inside a wider one (0x09 in the firmware window), so
+ * this is the first row in table order (xgo_reg_find_model): test_regs
+ * checks every address of every model. */
+static const xgo_reg_desc_t *desc_at(const xgo_regs_t *r, unsigned addr)
+{
+    unsigned back;
+    for (back = 0; back < (unsigned)REG_WIDTH_BOUND && back <= addr; back++) {
+        const xgo_reg_desc_t *d = r->arm ? row_at(r, XGO_REG_COUNT + addr - back, addr) : NULL;
+        if (d == NULL) {
+            d = row_at(r, addr - back, addr);
+        }
+        if (d != NULL) {
+            return d;
+        }
+    }
+    return NULL;
 }
 
 const xgo_reg_desc_t *xgo_reg_find_model(uint8_t addr, int arm)
@@ -196,7 +256,7 @@ static void load_initial(xgo_regs_t *r, int power_up)
         }
         memset(&r->mem[d->addr], d->initial, d->width);
     }
-    r->servo_speed = k_regs[r->index[XGO_REG_SERVO_SPEED]].initial;
+    r->servo_speed = desc_at(r, XGO_REG_SERVO_SPEED)->initial;
 }
 
 void xgo_regs_init(xgo_regs_t *r, const char *firmware, uint8_t version)
@@ -205,24 +265,13 @@ void xgo_regs_init(xgo_regs_t *r, const char *firmware, uint8_t version)
     static const char k_default_name[] = "XGOMINI";
 
     memset(r, 0, sizeof *r);
-    memset(r->index, UNMAPPED, sizeof r->index);
     r->arm = version == XGO_VERSION_MINI2;
-    /* Walk backwards so that on overlap the earlier table entry wins. */
-    for (i = REG_TABLE_SIZE; i-- > 0;) {
-        unsigned a;
-        if (!for_model(&k_regs[i], r->arm)) {
-            continue;
-        }
-        for (a = k_regs[i].addr; a < (unsigned)k_regs[i].addr + k_regs[i].width; a++) {
-            r->index[a] = (uint8_t)i;
-        }
-    }
     for (i = 0; i < XGO_FIRMWARE_LEN && firmware != NULL && firmware[i] != '\0'; i++) {
         r->firmware[i] = firmware[i];
     }
     load_initial(r, 1);
     for (i = 0; i < XGO_REG_COUNT; i++) {
-        const xgo_reg_desc_t *d = r->index[i] == UNMAPPED ? NULL : &k_regs[r->index[i]];
+        const xgo_reg_desc_t *d = desc_at(r, (unsigned)i);
         if (d != NULL && d->access == XGO_ACCESS_R && (d->flags & XGO_REGF_COMPUTED) == 0) {
             r->mem[i] = d->initial;
         }
@@ -247,11 +296,6 @@ uint8_t xgo_regs_get(const xgo_regs_t *r, uint8_t addr)
 void xgo_regs_set(xgo_regs_t *r, uint8_t addr, uint8_t value)
 {
     r->mem[addr] = value;
-}
-
-static const xgo_reg_desc_t *desc_at(const xgo_regs_t *r, unsigned addr)
-{
-    return r->index[addr] == UNMAPPED ? NULL : &k_regs[r->index[addr]];
 }
 
 const xgo_reg_desc_t *xgo_regs_find(const xgo_regs_t *r, uint8_t addr)
