@@ -273,6 +273,12 @@ typedef struct xgo_motion_s {
     uint16_t servo_written;   /* servo mode: joints written since entering it */
     uint8_t leg_ready;        /* leg mode: home reached, leg_feet_um valid */
     uint8_t servo_ready;      /* servo mode: home reached, unwritten joints captured */
+    struct {                  /* 0x30..0x3C as last decoded (motion_pose.c) */
+        uint8_t valid;            /* cleared when they are written or reset */
+        int32_t body[6];          /* 0x36..0x38, 0x33..0x35: mdeg, um */
+        int32_t velocity[3];      /* 0x30..0x32: um/s, um/s, mdeg/s */
+        int32_t mark_time_um;     /* 0x3C */
+    } decoded;
     struct {                  /* last body + leg IK solve (skipped when unchanged) */
         xgo_body_pose_t pose;
         int32_t rot_q30[9];                 /* pose's rotation (xgo_body_rotation), kept

@@ -24,7 +24,7 @@ void xgo_motion_asked_pose(xgo_motion_t *m, const xgo_regs_t *r, xgo_body_pose_t
                            xgo_body_pose_t *base, xgo_body_pose_t *spread);
 
 /* The gait command of 0x30..0x32, 0x3C, 0x09, 0x3D. */
-void xgo_motion_gait_command(const xgo_motion_t *m, const xgo_regs_t *r, xgo_gait_command_t *cmd);
+void xgo_motion_gait_command(xgo_motion_t *m, const xgo_regs_t *r, xgo_gait_command_t *cmd);
 
 /* Walking under cmd, how far each planted foot runs from its stance point
  * either way (for reach.h); 0 (stroke untouched) for a command that stands. */

@@ -55,6 +55,29 @@ static void set_pose(xgo_body_pose_t *pose, const int32_t v[PERIODIC_AXES])
     pose->z_um = v[5];
 }
 
+/* The body pose and the velocity command of 0x30..0x3C in their units,
+ * decoded again only after they were written or reset (motion_writes.c
+ * clears decoded.valid then): they change a few times a second at most. */
+static void decode_registers(xgo_motion_t *m, const xgo_regs_t *r)
+{
+    const xgo_profile_t *p = m->profile;
+    int32_t *v = m->decoded.body;
+    if (m->decoded.valid) {
+        return;
+    }
+    m->decoded.valid = 1;
+    v[0] = xgo_signed_byte_to_value(xgo_regs_get(r, XGO_REG_BODY_ROLL), p->body_mdeg[0].hi);
+    v[1] = xgo_signed_byte_to_value(xgo_regs_get(r, XGO_REG_BODY_PITCH), p->body_mdeg[1].hi);
+    v[2] = xgo_signed_byte_to_value(xgo_regs_get(r, XGO_REG_BODY_YAW), p->body_mdeg[2].hi);
+    v[3] = xgo_signed_byte_to_value(xgo_regs_get(r, XGO_REG_BODY_X), p->body_um[0].hi);
+    v[4] = xgo_signed_byte_to_value(xgo_regs_get(r, XGO_REG_BODY_Y), p->body_um[1].hi);
+    v[5] = xgo_byte_to_range(&p->body_um[2], xgo_regs_get(r, XGO_REG_BODY_Z));
+    m->decoded.velocity[0] = xgo_signed_byte_to_value(xgo_regs_get(r, XGO_REG_VX), XGO_VX_MAX_UM_S);
+    m->decoded.velocity[1] = xgo_signed_byte_to_value(xgo_regs_get(r, XGO_REG_VY), XGO_VY_MAX_UM_S);
+    m->decoded.velocity[2] = xgo_signed_byte_to_value(xgo_regs_get(r, XGO_REG_VYAW), XGO_VYAW_MAX_MDEG_S);
+    m->decoded.mark_time_um = xgo_mark_time_byte_to_um(p, xgo_regs_get(r, XGO_REG_MARK_TIME));
+}
+
 /* The pose of the registers now; base: the same with each periodic
  * channel at its middle; spread: those channels' amplitudes, 0 elsewhere. */
 static void body_pose_from_registers(xgo_motion_t *m, const xgo_regs_t *r, xgo_body_pose_t *pose,
@@ -67,12 +90,8 @@ static void body_pose_from_registers(xgo_motion_t *m, const xgo_regs_t *r, xgo_b
     int32_t v[PERIODIC_AXES], mid[PERIODIC_AXES], amp[PERIODIC_AXES] = {0, 0, 0, 0, 0, 0};
     unsigned axis;
 
-    v[0] = xgo_signed_byte_to_value(xgo_regs_get(r, XGO_REG_BODY_ROLL), p->body_mdeg[0].hi);
-    v[1] = xgo_signed_byte_to_value(xgo_regs_get(r, XGO_REG_BODY_PITCH), p->body_mdeg[1].hi);
-    v[2] = xgo_signed_byte_to_value(xgo_regs_get(r, XGO_REG_BODY_YAW), p->body_mdeg[2].hi);
-    v[3] = xgo_signed_byte_to_value(xgo_regs_get(r, XGO_REG_BODY_X), p->body_um[0].hi);
-    v[4] = xgo_signed_byte_to_value(xgo_regs_get(r, XGO_REG_BODY_Y), p->body_um[1].hi);
-    v[5] = xgo_byte_to_range(&p->body_um[2], xgo_regs_get(r, XGO_REG_BODY_Z));
+    decode_registers(m, r);
+    memcpy(v, m->decoded.body, sizeof v);
     memcpy(mid, v, sizeof mid);
 
     /* A periodic motion replaces the static value on its axis: a sinusoid
@@ -127,13 +146,14 @@ static void level(const xgo_motion_t *m, xgo_body_pose_t *pose)
         clamp32(pose->pitch_mdeg + m->stab_mdeg[1], p->body_mdeg[1].lo, p->body_mdeg[1].hi);
 }
 
-void xgo_motion_gait_command(const xgo_motion_t *m, const xgo_regs_t *r, xgo_gait_command_t *cmd)
+void xgo_motion_gait_command(xgo_motion_t *m, const xgo_regs_t *r, xgo_gait_command_t *cmd)
 {
+    decode_registers(m, r);
     memset(cmd, 0, sizeof *cmd);
-    cmd->vx_um_s = xgo_signed_byte_to_value(xgo_regs_get(r, XGO_REG_VX), XGO_VX_MAX_UM_S);
-    cmd->vy_um_s = xgo_signed_byte_to_value(xgo_regs_get(r, XGO_REG_VY), XGO_VY_MAX_UM_S);
-    cmd->vyaw_mdeg_s = xgo_signed_byte_to_value(xgo_regs_get(r, XGO_REG_VYAW), XGO_VYAW_MAX_MDEG_S);
-    cmd->mark_time_um = xgo_mark_time_byte_to_um(m->profile, xgo_regs_get(r, XGO_REG_MARK_TIME));
+    cmd->vx_um_s = m->decoded.velocity[0];
+    cmd->vy_um_s = m->decoded.velocity[1];
+    cmd->vyaw_mdeg_s = m->decoded.velocity[2];
+    cmd->mark_time_um = m->decoded.mark_time_um;
     cmd->type = xgo_regs_get(r, XGO_REG_GAIT_TYPE);
     cmd->pace = xgo_regs_get(r, XGO_REG_MOVE_MODE);
 }

@@ -65,6 +65,7 @@ static void reset_all(xgo_motion_t *m, xgo_regs_t *r)
 {
     xgo_regs_restore_initial(r);
     xgo_motion_init_registers(m, r);
+    m->decoded.valid = 0;
     xgo_servos_load(&m->servos, XGO_SERVO_ALL_MASK);
     m->perform = 0;
     m->perform_last = 0;
@@ -120,6 +121,7 @@ static void take_group_writes(xgo_motion_t *m, xgo_regs_t *r)
     whole |= xgo_regs_take_written(r, XGO_REG_GAIT_TYPE);
     if (whole) {
         m->group_mode = XGO_MODE_WHOLE_UNIT;
+        m->decoded.valid = 0; /* motion_pose.c decodes 0x30..0x3C again */
     }
     if (any_written(r, XGO_REG_LEG1_X, XGO_REG_LEG4_Z)) {
         m->group_mode = XGO_MODE_LEG;
@@ -185,6 +187,7 @@ static int take_action_writes(xgo_motion_t *m, xgo_regs_t *r)
             stop_action(m);
             m->perform = 0;
             clear_motion_registers(r);
+            m->decoded.valid = 0;
             m->group_mode = XGO_MODE_WHOLE_UNIT;
         }
         xgo_regs_set(r, XGO_REG_STAND, 0);
