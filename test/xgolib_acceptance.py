@@ -45,6 +45,8 @@ import threading
 import time
 import urllib.request
 
+from emu_process import EmuProcess
+
 SKIP = 77
 
 try:
@@ -108,7 +110,7 @@ def expect(cond, message):
 
 # ------------------------------------------------------------ the emulator
 
-class Emu:
+class Emu(EmuProcess):
     """xgo-emu with a --link symlink and the live view (its /state tells where
     the arm really is)."""
 
@@ -139,17 +141,6 @@ class Emu:
     def state(self):
         with urllib.request.urlopen(self.url + "state", timeout=5) as r:
             return json.loads(r.read())
-
-    def stop(self):
-        if self.proc.poll() is None:
-            self.proc.terminate()
-            try:
-                self.proc.wait(5)
-            except subprocess.TimeoutExpired:
-                self.proc.kill()
-                self.proc.wait()
-        self.err.close()
-        return self.proc.returncode
 
 
 # ------------------------------------------------------------ calling the library

@@ -35,6 +35,8 @@ import sys
 import tempfile
 import time
 
+from emu_process import EmuProcess
+
 SKIP = 77
 
 try:
@@ -60,7 +62,7 @@ RESULTS = []
 
 # ------------------------------------------------------------ the emulator
 
-class Emu:
+class Emu(EmuProcess):
     """One xgo-emu process with a --link symlink in a temporary directory."""
 
     def __init__(self, exe, workdir, *extra):
@@ -75,17 +77,6 @@ class Emu:
         if not line.startswith(b"/dev/"):
             self.stop()
             raise RuntimeError("xgo-emu did not print its pty path: %r" % line)
-
-    def stop(self):
-        if self.proc.poll() is None:
-            self.proc.terminate()
-            try:
-                self.proc.wait(5)
-            except subprocess.TimeoutExpired:
-                self.proc.kill()
-                self.proc.wait()
-        self.err.close()
-        return self.proc.returncode
 
 
 # ------------------------------------------------------------ raw access
