@@ -182,6 +182,30 @@ static void test_action_runs(void)
     TEST_ASSERT_EQUAL_UINT8(0, xgo_board_action(&board));
 }
 
+/* A frame longer than XGO_PARSER_FRAME_MAX (firmware: 64) is dropped as a
+ * bad length, and the read request right behind it is still answered: its
+ * bytes are rescanned. 64 bytes (56 data) still pass. */
+static void test_frame_length_limit(void)
+{
+    static uint8_t bytes[2 * 72 + 9];
+    uint32_t before[XGO_DIAG_COUNT], after[XGO_DIAG_COUNT];
+    uint8_t reply[64];
+    const uint8_t data[57] = {0};
+    size_t n = 0;
+    init_model(XGO_MODEL_MINI);
+    xgo_board_counters(&board, before);
+    n += xgo_frame_encode(XGO_TYPE_WRITE, 0x80, data, 56, &bytes[n], sizeof bytes - n);
+    n += xgo_frame_encode(XGO_TYPE_WRITE, 0x80, data, 57, &bytes[n], sizeof bytes - n);
+    TEST_ASSERT_EQUAL_UINT(64 + 65, n);
+    xgo_board_receive(&board, bytes, n, 0);
+    TEST_ASSERT_EQUAL_UINT(20, wire_read(XGO_REG_SERVO11, 12, reply, sizeof reply));
+    xgo_board_counters(&board, after);
+    TEST_ASSERT_EQUAL_UINT32(XGO_PARSER_FRAME_MAX < 65u ? 1u : 0u,
+                             after[XGO_DIAG_BAD_LENGTH] - before[XGO_DIAG_BAD_LENGTH]);
+    TEST_ASSERT_EQUAL_UINT32(XGO_PARSER_FRAME_MAX < 65u ? 2u : 3u,
+                             after[XGO_DIAG_FRAMES_OK] - before[XGO_DIAG_FRAMES_OK]);
+}
+
 /* Names only where they are built in; the lookups answer either way. */
 static void test_names(void)
 {
@@ -209,6 +233,7 @@ int main(void)
     RUN_TEST(test_walk_without_odometry_and_inertial);
     RUN_TEST(test_spec_read_reply);
     RUN_TEST(test_action_runs);
+    RUN_TEST(test_frame_length_limit);
     RUN_TEST(test_names);
     return UNITY_END();
 }

@@ -26,6 +26,18 @@
 #define XGO_TX_BUFFER_SIZE 1024u
 #endif
 
+/* Longest frame (its LEN byte, 9..255) the parser takes. The parser holds
+ * the frame being received whole, because nothing is applied before its
+ * checksum and tail are checked, so this sizes its buffer. A longer frame
+ * is dropped as a bad length (counted in bad_length) and its bytes are
+ * rescanned like any rejected candidate's. 255: every frame the protocol
+ * allows; the firmware images take 64, writes of up to 56 bytes (docs/mcu.md
+ * "Build options": the vendor library's writes are a few bytes each, a
+ * Bluetooth name up to 10; 191 bytes of RAM less). */
+#ifndef XGO_PARSER_FRAME_MAX
+#define XGO_PARSER_FRAME_MAX 255u
+#endif
+
 /* Default mid-frame silence (ms) after which the parser abandons a partial
  * frame (xgo_board_config_t.parser_timeout_ms overrides it per board). */
 #ifndef XGO_PARSER_DEFAULT_TIMEOUT_MS
@@ -103,6 +115,10 @@ void xgo_assert_failed(const char *file, int line, const char *expr);
 
 #if XGO_TX_BUFFER_SIZE < 255u || XGO_TX_BUFFER_SIZE > 65535u
 #error "XGO_TX_BUFFER_SIZE must hold one whole reply (255 bytes) and fit uint16_t"
+#endif
+
+#if XGO_PARSER_FRAME_MAX < 9u || XGO_PARSER_FRAME_MAX > 255u
+#error "XGO_PARSER_FRAME_MAX must hold a read request (9 bytes) and be a LEN byte (<= 255)"
 #endif
 
 #endif /* XGO_CONFIG_H */

@@ -27,7 +27,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "xgo/config.h" /* XGO_PARSER_DEFAULT_TIMEOUT_MS */
+#include "xgo/config.h" /* XGO_PARSER_DEFAULT_TIMEOUT_MS, XGO_PARSER_FRAME_MAX */
 
 #ifdef __cplusplus
 extern "C" {
@@ -114,7 +114,7 @@ typedef enum xgo_parser_side_e {
 } xgo_parser_side_t;
 
 typedef struct xgo_parser_s {
-    uint8_t buf[XGO_FRAME_MAX_LEN];
+    uint8_t buf[XGO_PARSER_FRAME_MAX]; /* the candidate frame (xgo/config.h) */
     uint16_t end;        /* bytes held */
     uint16_t checked;    /* prefix of buf already validated as a frame candidate */
     uint32_t last_rx_ms; /* time of the last byte fed */

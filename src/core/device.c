@@ -17,6 +17,16 @@
 
 #define RING_MASK ((uint16_t)(XGO_PORT_RX_RING_SIZE - 1u))
 
+/* The helpers with buffers of their own (a transmit chunk, the servo
+ * positions, the NV record) stay out of line: inlined, their arrays would
+ * sit in xgo_device_run's frame under every control tick, the deepest call
+ * path of a firmware image (docs/mcu.md "Sizes"). */
+#if defined(__GNUC__)
+#define OWN_FRAME __attribute__((noinline))
+#else
+#define OWN_FRAME
+#endif
+
 void xgo_device_init(xgo_device_t *d, xgo_port_t *port, const xgo_board_config_t *cfg)
 {
     xgo_board_nv_t nv;
@@ -71,7 +81,7 @@ static size_t reply_room(const xgo_device_t *d)
 }
 
 /* Moves replies to the port as far as it takes them. */
-static void send_replies(xgo_device_t *d)
+OWN_FRAME static void send_replies(xgo_device_t *d)
 {
     uint8_t chunk[32];
     while (xgo_board_tx_pending(&d->board) > 0) {
@@ -118,7 +128,7 @@ static void feed_input(xgo_device_t *d, uint32_t now_ms)
     }
 }
 
-static void write_servos(xgo_device_t *d)
+OWN_FRAME static void write_servos(xgo_device_t *d)
 {
     const xgo_servos_t *s = &d->board.motion.servos;
     int32_t raw[XGO_SERVO_COUNT];
@@ -130,7 +140,7 @@ static void write_servos(xgo_device_t *d)
 }
 
 /* Saves the non-volatile data once it has stopped changing. */
-static void track_nv(xgo_device_t *d)
+OWN_FRAME static void track_nv(xgo_device_t *d)
 {
     const uint32_t changes = xgo_board_nv_changes(&d->board);
     xgo_board_nv_t nv;

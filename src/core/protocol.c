@@ -133,6 +133,13 @@ static void drop_noise(xgo_parser_t *p, size_t n)
     consume(p, n);
 }
 
+/* A LEN byte the parser takes: at least one data byte, at most what its
+ * buffer holds (xgo/config.h). unsigned: no warning when the limit is 255. */
+static int length_valid(unsigned len)
+{
+    return len >= XGO_FRAME_OVERHEAD + 1u && len <= XGO_PARSER_FRAME_MAX;
+}
+
 static int type_valid(const xgo_parser_t *p, uint8_t type)
 {
     const int request = type == XGO_TYPE_WRITE || type == XGO_TYPE_WRITE_LEGACY ||
@@ -212,7 +219,7 @@ static void scan(xgo_parser_t *p)
             }
             break;
         case POS_LEN:
-            if (byte < XGO_FRAME_OVERHEAD + 1u) {
+            if (!length_valid(byte)) {
                 reject(p, XGO_DROP_BAD_LENGTH);
             }
             break;
@@ -281,7 +288,7 @@ static size_t take_whole_frame(xgo_parser_t *p, const uint8_t *in, size_t avail)
     const uint8_t type = in[POS_TYPE];
     xgo_frame_t frame;
     uint32_t span;
-    if (in[POS_HEAD1] != XGO_FRAME_HEAD1 || len < XGO_FRAME_OVERHEAD + 1u || len > avail ||
+    if (in[POS_HEAD1] != XGO_FRAME_HEAD1 || !length_valid(len) || len > avail ||
         !type_valid(p, type) || (type == XGO_TYPE_READ && len != XGO_READ_REQUEST_LEN) ||
         in[len - 2] != XGO_FRAME_TAIL0 || in[len - 1] != XGO_FRAME_TAIL1 ||
         in[len - 3] != xgo_frame_checksum((uint8_t)len, type, in[POS_ADDR], &in[POS_DATA], n)) {
@@ -321,7 +328,7 @@ void xgo_parser_feed(xgo_parser_t *p, const uint8_t *bytes, size_t n, uint32_t n
             }
         }
         /* Room is guaranteed: after scan() the held bytes are a strict prefix
-         * of a candidate frame, so end < 255. */
+         * of a candidate frame, so end < its LEN <= XGO_PARSER_FRAME_MAX. */
         p->buf[p->end++] = bytes[i++];
         scan(p);
     }
