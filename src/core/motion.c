@@ -92,11 +92,12 @@ static void action_pose(xgo_motion_t *m, xgo_body_pose_t *pose, xgo_vec3_t feet[
     }
 }
 
-/* Body + leg IK, skipped when the pose and the feet are those of the last
- * solve: a robot standing still (the common case) then costs almost nothing,
- * which matters on a Cortex-M0 (docs/mcu.md). */
+/* Body + leg IK into m->ik_cache.q_mdeg (the servos' targets), skipped when
+ * the pose and the feet are those of the last solve: a robot standing
+ * still (the common case) then costs almost nothing, which matters on a
+ * Cortex-M0 (docs/mcu.md). */
 static void solve_joints(xgo_motion_t *m, const xgo_body_pose_t *pose,
-                         const xgo_vec3_t feet[XGO_LEG_COUNT], int32_t q[XGO_SERVO_COUNT])
+                         const xgo_vec3_t feet[XGO_LEG_COUNT])
 {
     if (!m->ik_cache.valid || memcmp(&m->ik_cache.pose, pose, sizeof *pose) != 0 ||
         memcmp(m->ik_cache.feet, feet, sizeof m->ik_cache.feet) != 0) {
@@ -114,7 +115,6 @@ static void solve_joints(xgo_motion_t *m, const xgo_body_pose_t *pose,
         }
         m->ik_cache.valid = 1;
     }
-    memcpy(q, m->ik_cache.q_mdeg, sizeof m->ik_cache.q_mdeg);
 }
 
 /* ------------------------------------------------------------ transitions */
@@ -284,7 +284,7 @@ static void gait_command(xgo_motion_t *m, const xgo_regs_t *r, xgo_gait_command_
  * to a heading: at its highest rate), recomputed when the command or the
  * learnt margin changes; it applies while walking and while still stopping
  * (the last one kept). */
-static void update_stroke(xgo_motion_t *m, const xgo_gait_command_t *cmd)
+static XGO_MOTION_NOINLINE void update_stroke(xgo_motion_t *m, const xgo_gait_command_t *cmd)
 {
     xgo_gait_command_t c = *cmd;
     int32_t key[6];
@@ -326,15 +326,59 @@ static void reachable_target(xgo_motion_t *m, const xgo_regs_t *r, const xgo_gai
     }
 }
 
-/* Whole unit: the gait's feet (or the settle's while the feet go home),
- * the body following the reachable target. */
-static int whole_unit_targets(xgo_motion_t *m, const xgo_regs_t *r, int32_t q[XGO_SERVO_COUNT],
-                              int32_t *yaw_rate_mdeg_s)
+/* The pose of this tick and the feet under it made joint targets; a planted
+ * foot that ran out of reach where the stroke checked did not go makes the
+ * reach check a longer one (a new search from the next tick). */
+static void solve_tick(xgo_motion_t *m, const xgo_body_pose_t *pose, const xgo_vec3_t feet[XGO_LEG_COUNT])
+{
+    m->pose = *pose;
+    solve_joints(m, pose, feet);
+    if ((m->ik_cache.projected & m->contact) != 0 && m->stroke_on && m->action_id == 0 &&
+        !m->reach.searching && m->stroke_margin_um < STROKE_MARGIN_MAX_UM) {
+        m->stroke_margin_um += STROKE_MARGIN_STEP_UM;
+    }
+}
+
+/* A running action's tick (action_targets), solved. Out of line, as
+ * walk_tick. */
+static XGO_MOTION_NOINLINE void action_tick(xgo_motion_t *m, int32_t *yaw_rate_mdeg_s)
+{
+    xgo_vec3_t feet[XGO_LEG_COUNT];
+    xgo_body_pose_t pose;
+    action_targets(m, &pose, feet, yaw_rate_mdeg_s);
+    solve_tick(m, &pose, feet);
+}
+
+/* The feet of the gait (or the settle's while the feet go home) under cmd,
+ * the body following the reachable target, solved; returns 1 while
+ * walking or moving. Out of line: its feet and pose are not on the stack
+ * while reachable_target searches. */
+static XGO_MOTION_NOINLINE int walk_tick(xgo_motion_t *m, xgo_gait_command_t *cmd,
+                                         int32_t *yaw_rate_mdeg_s)
 {
     xgo_vec3_t feet[XGO_LEG_COUNT];
     xgo_body_pose_t pose;
     int walking = 1;
+    if (xgo_settle_active(&m->settle)) {
+        (void)xgo_settle_tick(&m->settle, m->stance_um, feet, &m->contact);
+    } else {
+        if (m->reach.searching && xgo_gait_is_standing(&m->gait)) {
+            memset(cmd, 0, sizeof *cmd); /* the first step waits for a pose the stroke holds */
+        }
+        *yaw_rate_mdeg_s = gait_feet(m, cmd, feet);
+        walking = !xgo_gait_is_standing(&m->gait);
+    }
+    xgo_follow_tick(&m->follow, &m->pose_target, &pose);
+    walking = walking || !xgo_follow_at(&m->follow, &m->pose_target);
+    solve_tick(m, &pose, feet);
+    return walking;
+}
 
+/* Whole unit: an action's targets, or the gait's under the reachable
+ * target; the joint targets in m->ik_cache.q_mdeg. */
+static int whole_unit_targets(xgo_motion_t *m, const xgo_regs_t *r, int32_t *yaw_rate_mdeg_s)
+{
+    xgo_gait_command_t cmd;
     *yaw_rate_mdeg_s = 0;
     if (xgo_settle_active(&m->settle)) { /* a body still coasting turns on the IMU */
         int32_t v[3];
@@ -342,39 +386,19 @@ static int whole_unit_targets(xgo_motion_t *m, const xgo_regs_t *r, int32_t q[XG
         *yaw_rate_mdeg_s = v[2];
     }
     if (m->action_id != 0) {
-        action_targets(m, &pose, feet, yaw_rate_mdeg_s);
-    } else {
-        xgo_gait_command_t cmd;
-        gait_command(m, r, &cmd);
-        reachable_target(m, r, &cmd);
-        if (xgo_settle_active(&m->settle)) {
-            (void)xgo_settle_tick(&m->settle, m->stance_um, feet, &m->contact);
-        } else {
-            if (m->reach.searching && xgo_gait_is_standing(&m->gait)) {
-                memset(&cmd, 0, sizeof cmd); /* the first step waits for a pose the stroke holds */
-            }
-            *yaw_rate_mdeg_s = gait_feet(m, &cmd, feet);
-            walking = !xgo_gait_is_standing(&m->gait);
-        }
-        xgo_follow_tick(&m->follow, &m->pose_target, &pose);
-        walking = walking || !xgo_follow_at(&m->follow, &m->pose_target);
+        action_tick(m, yaw_rate_mdeg_s);
+        return 1;
     }
-    m->pose = pose;
-    solve_joints(m, &pose, feet, q);
-    if ((m->ik_cache.projected & m->contact) != 0 && m->stroke_on && m->action_id == 0 &&
-        !m->reach.searching && m->stroke_margin_um < STROKE_MARGIN_MAX_UM) {
-        /* a planted foot ran out of reach where the stroke checked did not
-         * go: check a longer one (a new search from the next tick) */
-        m->stroke_margin_um += STROKE_MARGIN_STEP_UM;
-    }
-    return walking;
+    gait_command(m, r, &cmd);
+    reachable_target(m, r, &cmd);
+    return walk_tick(m, &cmd, yaw_rate_mdeg_s);
 }
 
 /* ------------------------------------------------------------ other modes */
 
 /* Leg and servo modes start from home: while the way there lasts, its
- * targets (returns 1, contacts known). */
-static int going_home(xgo_motion_t *m, int32_t q[XGO_SERVO_COUNT])
+ * targets (returns 1, contacts known; the targets in m->ik_cache.q_mdeg). */
+static int going_home(xgo_motion_t *m)
 {
     xgo_vec3_t feet[XGO_LEG_COUNT];
     xgo_body_pose_t pose;
@@ -384,7 +408,7 @@ static int going_home(xgo_motion_t *m, int32_t q[XGO_SERVO_COUNT])
     transition_step(m, &m->stand, feet, &pose);
     m->pose = pose;
     m->pose_target = m->stand;
-    solve_joints(m, &pose, feet, q);
+    solve_joints(m, &pose, feet);
     return 1;
 }
 
@@ -398,13 +422,14 @@ static int32_t toward(int32_t now, int32_t goal, int32_t step)
     return goal > now + step ? now + step : (goal < now - step ? now - step : goal);
 }
 
-static int leg_targets(xgo_motion_t *m, const xgo_regs_t *r, int32_t q[XGO_SERVO_COUNT])
+/* Leg mode once home: each foot a step toward its registers', its joints
+ * the servos' targets. Out of line: its joint array is not on the stack
+ * while the other modes go deep. */
+static XGO_MOTION_NOINLINE void leg_tick(xgo_motion_t *m, const xgo_regs_t *r)
 {
     const xgo_profile_t *p = m->profile;
+    int32_t q[XGO_SERVO_COUNT];
     unsigned leg;
-    if (going_home(m, q)) {
-        return 1;
-    }
     if (!m->leg_ready) { /* home: the feet start from the stance */
         xgo_body_ik(p, &m->stand, m->stance_um, m->leg_feet_um);
         m->leg_ready = 1;
@@ -420,6 +445,19 @@ static int leg_targets(xgo_motion_t *m, const xgo_regs_t *r, int32_t q[XGO_SERVO
         xgo_leg_ik(p, (xgo_leg_t)leg, foot, &q[XGO_JOINT_COUNT * leg]);
     }
     m->pose = m->stand;
+    xgo_servos_follow(&m->servos, q, XGO_JOINT_STEP_MAX_MDEG);
+}
+
+/* Leg mode: the way home (returns 1, *q its targets), then the registers'
+ * feet (returns 0, the servos already sent there, *q NULL). */
+static int leg_targets(xgo_motion_t *m, const xgo_regs_t *r, const int32_t **q)
+{
+    if (going_home(m)) {
+        *q = m->ik_cache.q_mdeg;
+        return 1;
+    }
+    leg_tick(m, r);
+    *q = NULL;
     return 0;
 }
 
@@ -427,10 +465,11 @@ static int32_t servo_mode_step(const xgo_regs_t *r);
 
 /* Servo mode: once home, joints the host has not written hold where they
  * are; each joint goes to its command at the speed of 0x5C. */
-static int servo_targets(xgo_motion_t *m, const xgo_regs_t *r, int32_t q[XGO_SERVO_COUNT], int32_t *step)
+static int servo_targets(xgo_motion_t *m, const xgo_regs_t *r, const int32_t **q, int32_t *step)
 {
     unsigned i;
-    if (going_home(m, q)) {
+    if (going_home(m)) {
+        *q = m->ik_cache.q_mdeg;
         return 1;
     }
     if (!m->servo_ready) {
@@ -441,7 +480,7 @@ static int servo_targets(xgo_motion_t *m, const xgo_regs_t *r, int32_t q[XGO_SER
         }
         m->servo_ready = 1;
     }
-    memcpy(q, m->servo_cmd_mdeg, sizeof m->servo_cmd_mdeg);
+    *q = m->servo_cmd_mdeg;
     *step = servo_mode_step(r);
     m->pose = m->stand;
     return 0;
@@ -525,7 +564,7 @@ void xgo_motion_publish(const xgo_motion_t *m, xgo_regs_t *r)
 
 /* The accelerometer and gyroscope see the body where the odometry and the
  * body pose put it, with the attitude the IMU reports. */
-static void inertial_tick(xgo_motion_t *m)
+static XGO_MOTION_NOINLINE void inertial_tick(xgo_motion_t *m)
 {
     const int32_t att[3] = {m->imu.roll_mdeg, m->imu.pitch_mdeg, m->imu.yaw_mdeg};
     int64_t body_q8[3];
@@ -560,7 +599,7 @@ static void enter_mode(xgo_motion_t *m, uint8_t was)
 void xgo_motion_tick(xgo_motion_t *m, xgo_regs_t *r)
 {
     const uint32_t clamped_before = m->clamped_pose_ticks;
-    int32_t q[XGO_SERVO_COUNT];
+    const int32_t *q = m->ik_cache.q_mdeg; /* the servos' targets */
     int32_t step = XGO_JOINT_STEP_MAX_MDEG;
     int32_t yaw_rate = 0;
     int busy = 0;
@@ -578,20 +617,22 @@ void xgo_motion_tick(xgo_motion_t *m, xgo_regs_t *r)
     switch (m->mode) {
     case XGO_MODE_WHOLE_UNIT:
     case XGO_MODE_ACTION:
-        busy = whole_unit_targets(m, r, q, &yaw_rate);
+        busy = whole_unit_targets(m, r, &yaw_rate);
         break;
     case XGO_MODE_LEG:
-        contact_known = leg_targets(m, r, q);
+        contact_known = leg_targets(m, r, &q);
         break;
     case XGO_MODE_SERVO:
-        contact_known = servo_targets(m, r, q, &step);
+        contact_known = servo_targets(m, r, &q, &step);
         break;
-    default: /* debug, calibration: hold */
-        memcpy(q, m->servos.angle_mdeg, sizeof q);
+    default: /* debug, calibration: hold (each servo's target is its angle) */
+        q = m->servos.angle_mdeg;
         contact_known = 0;
         break;
     }
-    xgo_servos_follow(&m->servos, q, step);
+    if (q != NULL) {
+        xgo_servos_follow(&m->servos, q, step);
+    }
     measure_feet(m, contact_known);
     xgo_imu_tick(&m->imu, m->pose.roll_mdeg, m->pose.pitch_mdeg, m->pose.yaw_mdeg, yaw_rate);
     inertial_tick(m);

@@ -7,6 +7,15 @@
 
 #include "motion.h"
 
+/* Kept out of line: a function whose locals are dead while the tick goes
+ * deep (the reach search, leg IK) must not lend them to the frame of the
+ * function that calls deep (the static stack bound, docs/mcu.md). */
+#if defined(__GNUC__)
+#define XGO_MOTION_NOINLINE __attribute__((noinline))
+#else
+#define XGO_MOTION_NOINLINE
+#endif
+
 /* The host's writes since the last tick, in the documented order (a reset
  * comes last, so it wins). */
 void xgo_motion_take_writes(xgo_motion_t *m, xgo_regs_t *r);
