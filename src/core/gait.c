@@ -225,14 +225,14 @@ static void touchdown_q8(const xgo_gait_t *g, const gait_tick_t *x, int leg, int
 {
     int32_t f[2];
     int32_t wf[2];
-    int32_t tau2 = mul_q((int32_t)x->tau_q16, (int32_t)x->tau_q16, 17u); /* tau^2 / 2 */
+    /* tau^2 / 2; tau < 2^16 (pick_cadence), so tau^2 / 2^17 < 2^15 */
+    const uint32_t tau2 = (uint32_t)mul_q_u16((int32_t)x->tau_q16, x->tau_q16, 17u);
     int c;
     foot_velocity(x->vel, x->w_q24, g->stance_um[leg][0], g->stance_um[leg][1], f);
     wf[0] = -mul_q(x->w_q24, f[1], 24u);
     wf[1] = mul_q(x->w_q24, f[0], 24u);
     for (c = 0; c < 2; ++c) {
-        td[c] = (g->stance_um[leg][c] + mul_q(f[c], (int32_t)x->tau_q16, 16u) + mul_q(wf[c], tau2, 16u)) *
-                256;
+        td[c] = (g->stance_um[leg][c] + mul_q_u16(f[c], x->tau_q16, 16u) + mul_q_u16(wf[c], tau2, 16u)) * 256;
     }
 }
 
@@ -488,6 +488,10 @@ static void pick_cadence(xgo_gait_t *g, gait_tick_t *x)
     slew_rate_base(g, x);
     rate_fit = fit_cadence(g, x);
     x->tau_q16 = x->t->k_tau / (rate_fit >> 8);
+    /* < 2^16, as the short products with it need (mul_q_u16): rate_fit is at
+     * least the slowest nominal rate (RATE(1200) >> 8 = 27962; every cap is
+     * faster), so tau <= KTAU(3, 4) / 27962 = 29491 */
+    XGO_ASSERT(x->tau_q16 < 65536u);
     x->rate = transient_rate(g, x, rate_fit);
     if (x->rate > rate_fit) {
         g->boosted_ticks++;
@@ -702,14 +706,16 @@ static void swing_step(xgo_gait_t *g, gait_tick_t *x, int leg)
     foot_velocity(x->vel, x->w_q24, g->lift_q8[leg][0] >> 8, g->lift_q8[leg][1] >> 8, f0);
     foot_velocity(x->vel, x->w_q24, td[0] >> 8, td[1] >> 8, f1);
     for (c = 0; c < 2; ++c) {
-        /* end tangents in 1/256 um per unit of psi: -f * T_swing */
-        const int32_t m0 = -mul_q(f0[c], (int32_t)x->swing_q16, 8u);
-        const int32_t m1 = -mul_q(f1[c], (int32_t)x->swing_q16, 8u);
+        /* end tangents in 1/256 um per unit of psi: -f * T_swing
+         * (T_swing < 2^16, move_feet) */
+        const int32_t m0 = -mul_q_u16(f0[c], x->swing_q16, 8u);
+        const int32_t m1 = -mul_q_u16(f1[c], x->swing_q16, 8u);
         g->pos_q8[leg][c] = g->lift_q8[leg][c] + mul_q(td[c] - g->lift_q8[leg][c], h, 26u) +
                             mul_q(m0, ca, 26u) + mul_q(m1, cb, 26u);
     }
     xgo_sincos(psi >> 1, &s, &co); /* angle pi * psi */
-    x->z_um[leg] = mul_q(g->swing_height_um[leg], mul_q(s, s, 30u), 30u);
+    /* the height is at most XGO_GAIT_MAX_HEIGHT_UM < 2^16 (lift_feet) */
+    x->z_um[leg] = mul_q_u16(mul_q(s, s, 30u), (uint32_t)g->swing_height_um[leg], 30u);
 }
 
 static void move_feet(xgo_gait_t *g, gait_tick_t *x)
@@ -717,6 +723,9 @@ static void move_feet(xgo_gait_t *g, gait_tick_t *x)
     const uint32_t r = x->rate >> 8;
     int leg;
     x->swing_q16 = x->t->k_swing / (r == 0u ? 1u : r);
+    /* < 2^16 (mul_q_u16): the rate is at least rate_fit (pick_cadence), so
+     * the swing lasts at most KSWING(1, 2) / 27962 = 39321 */
+    XGO_ASSERT(x->swing_q16 < 65536u);
     for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
         x->z_um[leg] = 0;
     }

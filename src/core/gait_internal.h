@@ -82,6 +82,41 @@ static inline int32_t mul_q(int32_t a, int32_t b, unsigned q)
 #endif
 }
 
+/* mul_q(a, b, q) for 0 <= b < 2^16, any a, 1 <= q <= 31: the same result,
+ * bit for bit (where mul_q's result wraps, this one wraps alike; callers
+ * state why their b fits). On a Cortex-M0 the short factor saves half of the
+ * product: a = ah 2^16 + al (ah = a >> 16, 0 <= al < 2^16) gives
+ * a b = (ah b) 2^16 + al b, two MULS with |ah b| <= 2^15 (2^16 - 1) and
+ * 0 <= al b <= (2^16 - 1)^2; the rounding is taken on the two words:
+ *   q >= 16: floor((a b + 2^(q-1)) / 2^q)
+ *          = floor((ah b + floor((al b + 2^(q-1)) / 2^16)) / 2^(q-16))
+ *   q < 16:  = ah b 2^(16-q) + floor((al b + 2^(q-1)) / 2^q)   (mod 2^32)
+ * (floor(floor(x / m) / n) = floor(x / (m n)); for q > 16 the 2^(q-1) is a
+ * multiple of 2^16 and is added after the shift, where the low word cannot
+ * overflow; the sum ah b + 2^16 + 2^14 stays below 2^31). Inline with q a
+ * constant: about 12 instructions instead of a 45-instruction call.
+ * test/test_gait_arith.c sweeps the edges against a 64-bit product.
+ * Elsewhere (one widening multiply instruction): plain mul_q. */
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline int32_t mul_q_u16(int32_t a, uint32_t b, unsigned q)
+{
+#if XGO_CORE_NARROW_CPU
+    const uint32_t hi = (uint32_t)((a >> 16) * (int32_t)b);
+    const uint32_t lo = ((uint32_t)a & 0xFFFFu) * b;
+    if (q > 16u) {
+        return (int32_t)(hi + (lo >> 16) + (1u << (q - 17u))) >> (q - 16u);
+    }
+    if (q == 16u) {
+        return (int32_t)(hi + ((lo + 0x8000u) >> 16));
+    }
+    return (int32_t)((hi << (16u - q)) + ((lo + (1u << (q - 1u))) >> q));
+#else
+    return mul_q(a, (int32_t)b, q);
+#endif
+}
+
 static inline uint32_t abs_u(int32_t v)
 {
     return v < 0 ? 0u - (uint32_t)v : (uint32_t)v;
@@ -129,8 +164,9 @@ static inline int32_t gait_reach_y(int32_t w_mdeg_s)
 static inline void gait_midpoint_of(const xgo_gait_t *g, int leg, const int32_t f[2],
                                     uint32_t half_q16, int32_t q[2])
 {
-    q[0] = (g->pos_q8[leg][0] >> 8) - mul_q(f[0], (int32_t)half_q16, 16u);
-    q[1] = (g->pos_q8[leg][1] >> 8) - mul_q(f[1], (int32_t)half_q16, 16u);
+    /* half_q16 < 2^14 (half_time_q16: r < 2^32, k_half < 2^21) */
+    q[0] = (g->pos_q8[leg][0] >> 8) - mul_q_u16(f[0], half_q16, 16u);
+    q[1] = (g->pos_q8[leg][1] >> 8) - mul_q_u16(f[1], half_q16, 16u);
 }
 
 static inline void gait_stance_midpoint(const xgo_gait_t *g, int leg, const int32_t v[2],

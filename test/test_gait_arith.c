@@ -1,0 +1,90 @@
+/*
+ * test_gait_arith.c - the gait's short-cut arithmetic (src/core/gait_internal.h)
+ * against plain 64-bit arithmetic computed here, at the edges of the ranges
+ * each short cut claims. The Cortex-M0 forms are the ones under test: this
+ * file selects them on any host (XGO_WIDE_MUL_SPLIT, wide.h).
+ */
+#define XGO_WIDE_MUL_SPLIT 1
+
+#include <stdint.h>
+
+#include "unity.h"
+#include "gait_internal.h"
+
+void setUp(void) {}
+
+void tearDown(void) {}
+
+/* floor((a b + 2^(q-1)) / 2^q) with a 64-bit product, modulo 2^32 (as
+ * mul_q wraps when the result does not fit). */
+static int32_t reference_mul_q(int32_t a, int32_t b, unsigned q)
+{
+    int64_t p = (int64_t)a * b + ((int64_t)1 << (q - 1u));
+    int64_t r = p >= 0 ? p / ((int64_t)1 << q) : -((-p + ((int64_t)1 << q) - 1) / ((int64_t)1 << q));
+    uint32_t u = (uint32_t)(uint64_t)r;
+    return u <= (uint32_t)INT32_MAX ? (int32_t)u : -(int32_t)(~u) - 1;
+}
+
+static uint32_t lcg(uint32_t *s)
+{
+    *s = *s * 1664525u + 1013904223u;
+    return *s;
+}
+
+/* mul_q_u16 at the q this file's callers use (inline with a constant q, as
+ * in gait.c). */
+static int32_t short_mul(int32_t a, uint32_t b, unsigned q)
+{
+    switch (q) {
+    case 1u: return mul_q_u16(a, b, 1u);
+    case 8u: return mul_q_u16(a, b, 8u);
+    case 16u: return mul_q_u16(a, b, 16u);
+    case 17u: return mul_q_u16(a, b, 17u);
+    case 30u: return mul_q_u16(a, b, 30u);
+    default: return mul_q_u16(a, b, q);
+    }
+}
+
+/* Every b edge, every a edge (the whole int32 range: where the result does
+ * not fit, both wrap alike), ties and random values: same as the reference. */
+static void test_mul_q_u16_matches_the_wide_product(void)
+{
+    static const uint32_t bs[] = { 0u, 1u, 2u, 0x7FFFu, 0x8000u, 0x8001u, 0xFFFEu, 0xFFFFu, 29491u, 39321u };
+    static const unsigned qs[] = { 1u, 8u, 9u, 15u, 16u, 17u, 24u, 30u, 31u };
+    static const int32_t edges[] = { INT32_MAX, INT32_MIN, INT32_MAX - 1, INT32_MIN + 1, 0, 1, -1,
+                                     0x10000, -0x10000, 0xFFFF, -0xFFFF, 0x7FFF0000, -0x7FFF0000,
+                                     (int32_t)0x8000FFFF, 0x7FFFFFFF - 0xFFFF };
+    uint32_t seed = 12345u;
+    unsigned checked = 0;
+    size_t i, j, k;
+    for (i = 0; i < sizeof qs / sizeof qs[0]; ++i) {
+        const unsigned q = qs[i];
+        for (j = 0; j < sizeof bs / sizeof bs[0]; ++j) {
+            const uint32_t b = bs[j];
+            /* a b just below, at and above a tie of the rounding */
+            const int32_t tie = b == 0u ? 0 : (int32_t)(((int64_t)1 << (q - 1u)) / b);
+            for (k = 0; k < sizeof edges / sizeof edges[0] + 3u + 3000u; ++k) {
+                int32_t a;
+                if (k < sizeof edges / sizeof edges[0]) {
+                    a = edges[k];
+                } else if (k < sizeof edges / sizeof edges[0] + 3u) {
+                    a = tie - 1 + (int32_t)(k - sizeof edges / sizeof edges[0]);
+                } else {
+                    uint32_t r = lcg(&seed);
+                    /* half of them small enough for the result to fit */
+                    a = (k & 1u) ? (int32_t)r : (int32_t)r >> (lcg(&seed) >> 27);
+                }
+                TEST_ASSERT_EQUAL_INT32(reference_mul_q(a, (int32_t)b, q), short_mul(a, b, q));
+                ++checked;
+            }
+        }
+    }
+    TEST_ASSERT_TRUE(checked > 200000u);
+}
+
+int main(void)
+{
+    UNITY_BEGIN();
+    RUN_TEST(test_mul_q_u16_matches_the_wide_product);
+    return UNITY_END();
+}
