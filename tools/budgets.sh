@@ -7,7 +7,8 @@
 #   x86-64 control tick      callgrind, bench_board (trot, turn, body pose)
 #   fixed vs double IK       callgrind, bench_kinematics
 #   parser per byte          callgrind, bench_parser parser (1 MiB mixed stream)
-#   Cortex-M0 / M3 tick      tools/mcu/run.sh (QEMU micro:bit / mps2-an385)
+#   Cortex-M0 / M3 tick      tools/mcu/run.sh (QEMU micro:bit / mps2-an385), the
+#                            full core and the firmware configuration
 #   firmware flash, RAM      tools/mcu/fw_check.sh on both images
 #   stack                    tools/mcu/run.sh (painted RAM around each call)
 #
@@ -38,19 +39,25 @@ bytes=$("$host/bench_parser" 1 parser | sed -n 's/.*parser only, \([0-9]*\) byte
 parser=$(collected --toggle-collect=xgo_parser_feed "$host/bench_parser" 1 parser)
 row "parser, instructions per byte" "$(awk -v p="$parser" -v n="$bytes" 'BEGIN { printf "%.1f", p / n }')" "<= 25"
 
+# Each MCU twice: the core with every feature (the host's configuration) and
+# with the firmware images' options and buffers (XGO_MCU_CONFIG=firmware:
+# what the STM32/nRF51 images run).
 for target in m0 m3; do
-  out=$(XGO_MCU_TARGET=$target bash tools/mcu/run.sh 2>&1) || { echo "$out"; exit 1; }
-  avg=$(echo "$out" | sed -n 's/.*ticks 1001..2000 (steady): min [0-9]* avg \([0-9.]*\).*/\1/p')
-  p99=$(echo "$out" | sed -n 's/.*ticks 1001..2000 (steady): p50.* p99 \([0-9]*\).*/\1/p')
-  if [ "$target" = m0 ]; then
-    echo "== Cortex-M0 (QEMU micro:bit, -Os)"
-    row "xgo_board_tick, trot + body pose, avg / p99" "$avg / $p99" "<= 15,000 / 25,000"
-    echo "$out" | grep -E "^INFO sizeof|^COST stack below" | sed 's/^/  /'
-  else
-    echo "== Cortex-M3 (QEMU mps2-an385, -Os)"
-    row "xgo_board_tick, trot + body pose, avg" "$avg" "<= 8,000"
-  fi
-  echo "$out" | grep '^identical' | sed 's/^/  /'
+  for config in full firmware; do
+    out=$(XGO_MCU_TARGET=$target XGO_MCU_CONFIG=$config bash tools/mcu/run.sh 2>&1) ||
+      { echo "$out"; exit 1; }
+    avg=$(echo "$out" | sed -n 's/.*ticks 1001..2000 (steady): min [0-9]* avg \([0-9.]*\).*/\1/p')
+    p99=$(echo "$out" | sed -n 's/.*ticks 1001..2000 (steady): p50.* p99 \([0-9]*\).*/\1/p')
+    if [ "$target" = m0 ]; then
+      [ "$config" = full ] && echo "== Cortex-M0 (QEMU micro:bit, -Os)"
+      row "xgo_board_tick trot + pose, $config, avg / p99" "$avg / $p99" "<= 15,000 / 25,000"
+      echo "$out" | grep -E "^INFO sizeof|^COST stack below" | sed 's/^/    /'
+    else
+      [ "$config" = full ] && echo "== Cortex-M3 (QEMU mps2-an385, -Os)"
+      row "xgo_board_tick trot + pose, $config, avg" "$avg" "<= 8,000"
+    fi
+    echo "$out" | grep '^identical' | sed 's/^/    /'
+  done
 done
 
 echo "== firmware images (arm-none-eabi-gcc -Os): goal flash <= 20 KiB, board + stack <= 3 KiB"

@@ -13,11 +13,27 @@
 # Environment: XGO_MCU_BUILD (default build-mcu, build-mcu-m3), XGO_MCU_OPT (default -Os),
 # XGO_MCU_TARGET: m0 (default: built for a Cortex-M0+, run on the micro:bit's
 # M0) or m3 (for comparison: built for and run on a Cortex-M3, mps2-an385).
+# XGO_MCU_CONFIG: full (default: the core with every feature and the host's
+# buffers) or firmware (the options and buffer sizes the firmware images
+# ship with, XGO_FIRMWARE_OPTIONS and XGO_FIRMWARE_BUFFERS in CMakeLists.txt:
+# what an MCU actually runs). Host and MCU are built alike either way, so the
+# RESULT lines compare one configuration on both architectures (the two
+# configurations may differ only where a compiled-out model shows).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 
 target=${XGO_MCU_TARGET:-m0}
-if [ "$target" = m0 ]; then out=${XGO_MCU_BUILD:-build-mcu}; else out=${XGO_MCU_BUILD:-build-mcu-$target}; fi
+config=${XGO_MCU_CONFIG:-full}
+case "$config" in
+  full) suffix=; cfgdefs=() ;;
+  firmware) # the lists' defaults, read where CMake keeps them (one source of truth)
+    suffix=-fw
+    mapfile -t cfgdefs < <(sed -n 's/^set(XGO_FIRMWARE_\(OPTIONS\|BUFFERS\) "\([^"]*\)".*/\2/p' \
+      CMakeLists.txt | tr ';' '\n' | sed '/^$/d; s/^/-D/')
+    [ "${#cfgdefs[@]}" -gt 0 ] || { echo "no XGO_FIRMWARE_OPTIONS in CMakeLists.txt" >&2; exit 2; } ;;
+  *) echo "XGO_MCU_CONFIG must be full or firmware" >&2; exit 2 ;;
+esac
+if [ "$target" = m0 ]; then out=${XGO_MCU_BUILD:-build-mcu$suffix}; else out=${XGO_MCU_BUILD:-build-mcu-$target$suffix}; fi
 opt=${XGO_MCU_OPT:--Os}
 mcu=tools/mcu
 mkdir -p "$out/obj"
@@ -31,11 +47,11 @@ esac
 # The measured image is built as a firmware would ship: the core's checks
 # compiled out (MinSizeRel has NDEBUG); a second image turns them on to show
 # the hook working.
-armflags=("${cpu[@]}" "$opt" "${defs[@]}" -g -ffreestanding -ffunction-sections -fdata-sections
+armflags=("${cpu[@]}" "$opt" "${defs[@]}" "${cfgdefs[@]}" -g -ffreestanding -ffunction-sections -fdata-sections
   -Iinclude -Isrc/core -Itest/support -I"$mcu")
 nochecks=(-DXGO_ASSERT_ENABLED=0)
 
-echo "== build: bare-metal image (arm-none-eabi-gcc ${cpu[*]} $opt -ffreestanding -nostdlib)"
+echo "== build: bare-metal image (arm-none-eabi-gcc ${cpu[*]} $opt -ffreestanding -nostdlib), $config configuration ${cfgdefs[*]}"
 objs=()
 # The board without the device layer (src/core/device.c needs a port's
 # xgo_port_* functions; this self test drives the board directly).
@@ -86,7 +102,7 @@ link "$out/mcu_assert.elf" "$out/obj-checks/mcu_selftest_assert.o" "${checked[@]
 
 echo "== build: host variant (gcc -O2)"
 host="$out/mcu_selftest_host"
-gcc "${warn[@]}" -O2 "${nochecks[@]}" -Iinclude -Isrc/core -Itest/support -I"$mcu" "$mcu/mcu_selftest.c" "$mcu/host_port.c" \
+gcc "${warn[@]}" -O2 "${nochecks[@]}" "${cfgdefs[@]}" -Iinclude -Isrc/core -Itest/support -I"$mcu" "$mcu/mcu_selftest.c" "$mcu/host_port.c" \
   test/support/board_io.c "${core_srcs[@]}" -o "$host"
 
 echo "== sizes"
@@ -163,4 +179,4 @@ if ! diff -u "$out/host.result" "$out/mcu.result"; then
   echo "FAIL: the host and the MCU computed different results"
   exit 1
 fi
-echo "identical: $(wc -l <"$out/mcu.result") RESULT lines (host gcc -O2, ${cpu[0]#-mcpu=} $opt on $machine)"
+echo "identical: $(wc -l <"$out/mcu.result") RESULT lines (host gcc -O2, ${cpu[0]#-mcpu=} $opt on $machine, $config configuration)"
