@@ -182,24 +182,28 @@ uint32_t xgo_isqrt32(uint32_t x)
  * bits), one Newton step for the low 16 bits with a 32-bit division (the
  * remainder is below 2^49 and the divisor 2^17 times the root: both cut by
  * 2^17 so it fits), then exact by stepping (the step lands within 2). */
+/* The root of m in [2^62, 2^64) before the exact fix: within 2 of it. */
+static uint32_t isqrt_norm64_step(uint64_t m)
+{
+    const uint32_t hi = (uint32_t)(m >> 32), lo = (uint32_t)m;
+    const uint32_t y0 = isqrt_norm32(hi); /* 2^15 <= y0 < 2^16 */
+    const uint32_t rem = hi - y0 * y0;    /* <= 2 y0 < 2^17 */
+    const uint32_t y = (y0 << 16) + ((rem << 15) + (lo >> 17)) / y0; /* (rem << 15) + .. < 2^32 */
+    return y < (y0 << 16) ? 0xFFFFFFFFu : y; /* the step passed 2^32: the root is just below */
+}
+
 uint32_t xgo_isqrt64(uint64_t x)
 {
-    uint32_t hi = (uint32_t)(x >> 32), lo, y0, rem, y;
+    const uint32_t hi = (uint32_t)(x >> 32);
     unsigned s;
     uint64_t m;
+    uint32_t y;
     if (hi == 0u) {
         return xgo_isqrt32((uint32_t)x);
     }
     s = xgo_clz32(hi) & ~1u;
     m = x << s;
-    hi = (uint32_t)(m >> 32);
-    lo = (uint32_t)m;
-    y0 = isqrt_norm32(hi);       /* 2^15 <= y0 < 2^16 */
-    rem = hi - y0 * y0;          /* <= 2 y0 < 2^17 */
-    y = (y0 << 16) + ((rem << 15) + (lo >> 17)) / y0; /* (rem << 15) + .. < 2^32 */
-    if (y < (y0 << 16)) {
-        y = 0xFFFFFFFFu; /* the step passed 2^32: the root is just below */
-    }
+    y = isqrt_norm64_step(m);
     while (xgo_umul_wide(y, y) > m) {
         --y;
     }
@@ -207,6 +211,17 @@ uint32_t xgo_isqrt64(uint64_t x)
         ++y;
     }
     return y >> (s / 2u);
+}
+
+uint32_t xgo_sqrt64_near(uint64_t x)
+{
+    const uint32_t hi = (uint32_t)(x >> 32);
+    unsigned s;
+    if (hi == 0u) {
+        return xgo_isqrt32((uint32_t)x);
+    }
+    s = xgo_clz32(hi) & ~1u;
+    return isqrt_norm64_step(x << s) >> (s / 2u);
 }
 
 xgo_q16_t xgo_q16_sqrt(xgo_q16_t x)
@@ -498,47 +513,43 @@ static uint32_t atan_octant(uint32_t ux, uint32_t uy)
     return ey < 0 ? atan_tab[i] - b : atan_tab[i] + b;
 }
 
-/* The angle of (ux, uy) in the first quadrant, from the octant (swap so
- * uy <= ux) with the larger component scaled to [2^24, 2^25] (exact when
- * scaled up, rounded when scaled down: 25 bits of the ratio kept). Axes
- * and diagonals come out exact by themselves (the residual is 0 there);
- * atan2(0, 0) = 0. */
-/* round(v / 2^k), 1 <= k <= 31, without overflow: for k >= 2 the dropped
- * low bit cannot change the result, so the half is added to v / 2. */
-static uint32_t round_shift_u32(uint32_t v, unsigned k)
+/* From the octant's angle a of (big, small) back to the angle of (x, y):
+ * swap said small was the x component. */
+static xgo_bam_t fold(uint32_t a, int swap, int xneg, int yneg)
 {
-    if (k == 1u) {
-        return (v >> 1) + (v & 1u);
+    if (swap) {
+        a = XGO_BAM_90 - a;
     }
-    return ((v >> 1) + (1u << (k - 2u))) >> (k - 1u);
-}
-
-static uint32_t atan2_quadrant(uint32_t ux, uint32_t uy)
-{
-    const int swap = uy > ux;
-    const uint32_t big = swap ? uy : ux, small = swap ? ux : uy;
-    uint32_t a;
-    unsigned n;
-    if (big == 0u) {
-        return 0u;
-    }
-    n = xgo_clz32(big);
-    if (n >= 7u) {
-        a = atan_octant(big << (n - 7u), small << (n - 7u));
-    } else {
-        const unsigned k = 7u - n;
-        a = atan_octant(round_shift_u32(big, k), round_shift_u32(small, k));
-    }
-    return swap ? XGO_BAM_90 - a : a;
-}
-
-static xgo_bam_t atan2_mag(uint32_t ux, uint32_t uy, int xneg, int yneg)
-{
-    uint32_t a = atan2_quadrant(ux, uy);
     if (xneg) {
         a = XGO_BAM_180 - a;
     }
     return yneg ? 0u - a : a;
+}
+
+/* The angle of (ux, uy) with the signs given apart: the octant (swap so the
+ * smaller is uy), atan_octant with the larger component scaled to [2^24,
+ * 2^25] (exact when scaled up, rounded once when scaled down: 25 bits of
+ * the ratio kept; the larger may round up to 2^25 itself, still in range),
+ * folded back. Axes and diagonals come out exact by themselves (the
+ * residual is 0 there); atan2(0, 0) = 0. */
+static xgo_bam_t atan2_u32(uint32_t ux, uint32_t uy, int xneg, int yneg)
+{
+    const int swap = uy > ux;
+    uint32_t big = swap ? uy : ux, small = swap ? ux : uy;
+    const unsigned n = xgo_clz32(big);
+    if (n >= 7u) {
+        if (big == 0u) {
+            return 0u;
+        }
+        big <<= n - 7u;
+        small <<= n - 7u;
+    } else { /* round(v / 2^k) as (v / 2 + 2^(k-2)) / 2^(k-1) for k >= 2: no overflow */
+        const unsigned k = 7u - n;
+        const uint32_t half = (1u << (k - 1u)) >> 1;
+        big = ((big >> 1) + half + (k == 1u ? (big & 1u) : 0u)) >> (k - 1u);
+        small = ((small >> 1) + half + (k == 1u ? (small & 1u) : 0u)) >> (k - 1u);
+    }
+    return fold(atan_octant(big, small), swap, xneg, yneg);
 }
 
 static uint32_t abs_u32(int32_t v)
@@ -548,7 +559,7 @@ static uint32_t abs_u32(int32_t v)
 
 xgo_bam_t xgo_atan2(int32_t y, int32_t x)
 {
-    return atan2_mag(abs_u32(x), abs_u32(y), x < 0, y < 0);
+    return atan2_u32(abs_u32(x), abs_u32(y), x < 0, y < 0);
 }
 
 static uint64_t abs_u64(int64_t v)
@@ -556,41 +567,22 @@ static uint64_t abs_u64(int64_t v)
     return v < 0 ? 0u - (uint64_t)v : (uint64_t)v;
 }
 
-/* round(v / 2^k) for k >= 1 without overflow: for k >= 2 the dropped low
- * bit cannot change the result, so add the half to v / 2 instead. */
-static uint64_t rshift_round_u64(uint64_t v, unsigned k)
-{
-    if (k == 1u) {
-        return (v >> 1) + (v & 1u);
-    }
-    return ((v >> 1) + ((uint64_t)1 << (k - 2u))) >> (k - 1u);
-}
-
 xgo_bam_t xgo_atan2_64(int64_t y, int64_t x)
 {
-    uint64_t ux = abs_u64(x);
-    uint64_t uy = abs_u64(y);
-    const uint64_t m = ux | uy; /* the bit length of the larger */
+    const uint64_t ux = abs_u64(x), uy = abs_u64(y); /* <= 2^63 */
+    const unsigned bits = xgo_bit_length(ux | uy);
+    const int swap = uy > ux;
     unsigned k;
-    uint32_t big, small, a;
-    if ((m >> 25) == 0u) {
-        return atan2_mag((uint32_t)ux, (uint32_t)uy, x < 0, y < 0);
+    uint64_t half;
+    if (bits <= 32u) {
+        return atan2_u32((uint32_t)ux, (uint32_t)uy, x < 0, y < 0);
     }
-    /* Scale both down, once and rounded, so the larger lands in [2^24,
-     * 2^25]: atan_octant's range, no second normalisation. */
-    k = xgo_bit_length(m) - 25u;
-    ux = rshift_round_u64(ux, k);
-    uy = rshift_round_u64(uy, k);
-    big = (uint32_t)(ux > uy ? ux : uy);
-    small = (uint32_t)(ux > uy ? uy : ux);
-    a = atan_octant(big, small);
-    if (uy > ux) {
-        a = XGO_BAM_90 - a;
-    }
-    if (x < 0) {
-        a = XGO_BAM_180 - a;
-    }
-    return y < 0 ? 0u - a : a;
+    /* round(v / 2^k) to 25 bits: v + 2^(k-1) < 2^63 + 2^38 cannot overflow */
+    k = bits - 25u;
+    half = (uint64_t)1 << (k - 1u);
+    return fold(atan_octant((uint32_t)(((swap ? uy : ux) + half) >> k),
+                            (uint32_t)(((swap ? ux : uy) + half) >> k)),
+                swap, x < 0, y < 0);
 }
 
 /* ------------------------------------------------------------ asin / acos */

@@ -149,6 +149,12 @@ static inline unsigned xgo_bit_length(uint64_t v)
 uint32_t xgo_isqrt32(uint32_t x);
 uint32_t xgo_isqrt64(uint64_t x);
 
+/* sqrt(x) within 2^(k/2 - 15) of it for x in [2^k, 2^(k+1)), k >= 32
+ * (relative 2^-30), exact below 2^32: the exact root's method without its
+ * final compares (a Newton step from the table root lands within 2 at
+ * 32-bit scale), for callers that round anyway (the leg IK). */
+uint32_t xgo_sqrt64_near(uint64_t x);
+
 /* sqrt(x) in Q16.16, rounded to nearest; x <= 0 gives 0. Max error 0.5 LSB. */
 xgo_q16_t xgo_q16_sqrt(xgo_q16_t x);
 

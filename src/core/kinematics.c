@@ -80,6 +80,12 @@ static uint32_t isqrt64_round(uint64_t v)
     return (xgo_isqrt64(v << 2) + 1u) >> 1;
 }
 
+/* The same within a unit (xgo_sqrt64_near): the hot path's two roots. */
+static uint32_t sqrt64_round_near(uint64_t v)
+{
+    return (xgo_sqrt64_near(v << 2) + 1u) >> 1;
+}
+
 /* ------------------------------------------------------------ planar IK */
 
 typedef struct planar_s {
@@ -232,7 +238,7 @@ static int planar_ik(planar_t *pl, int32_t x, int32_t h, leg_solution_t *s)
     dn = (int32_t)(d >> pl->d_shift);
     nn = (int32_t)(n >> pl->d_shift);
     nn = nn > dn ? dn : (nn < -dn ? -dn : nn);
-    cn = isqrt64_round(xgo_umul_wide((uint32_t)(dn - nn), (uint32_t)(dn + nn))); /* < 2^30 */
+    cn = sqrt64_round_near(xgo_umul_wide((uint32_t)(dn - nn), (uint32_t)(dn + nn))); /* < 2^30 */
     s->g = xgo_atan2(nn, (int32_t)cn);
     /* t2 = u-angle of the foot (x, h) minus the foot's angle past the thigh,
      * the u-angle of (a, b) = (L2 cos g, L1 + L2 sin g) (scaled by dn). As
@@ -370,7 +376,7 @@ int xgo_leg_ik(const xgo_profile_t *p, xgo_leg_t leg, const xgo_vec3_t *foot_um,
     wp = (side > 0 ? y : -y) + d; /* |wp| <= 2^21 */
     h2 = xgo_mul_wide(wp, wp) + xgo_mul_wide(z, z) - xgo_mul_wide(d, d);
     inside_axis_cylinder = h2 < 0;
-    h_abs = h2 > 0 ? (int32_t)isqrt64_round((uint64_t)h2 << (2 * Q4_SHIFT)) : 0; /* q4, < 2^26 */
+    h_abs = h2 > 0 ? (int32_t)sqrt64_round_near((uint64_t)h2 << (2 * Q4_SHIFT)) : 0; /* q4, < 2^26 */
 
     /* Two solutions: foot below the thigh joint's level in the leg plane
      * (the normal one), or above it. Take the first that reaches the target
@@ -453,28 +459,76 @@ void xgo_body_ik(const xgo_profile_t *p, const xgo_body_pose_t *pose,
     xgo_body_ik_rotated(p, pose, rot, feet_machine_um, feet_leg_um);
 }
 
+/* round(sum of q[i] * v[i] / 2^18) for three Q18 entries |q| <= 2^18 (the
+ * rotation's Q30 entries cut to Q18, rot_q18) and |v| < 2^22 (4 m): the
+ * sum S = sum q * v (< 2^42) is exact, its rounding to um the only one.
+ * Error: 2^-19 of |v| per term from the Q18 entries (<= 0.9 um over the
+ * three at the body's 0.3 m; docs/fixed-point.md). A Cortex-M0 has no
+ * widening multiply (xgo_mul_wide is four MULS and carries there), so it
+ * forms S in 32-bit pieces, v = vh * 2^11 + vl: rq * vh <= 2^29 and
+ * rq * vl < 2^29, three of each fit; elsewhere S is three 64-bit products.
+ * Both are exact: the same result everywhere. */
+static int32_t dot3_q18(int32_t q0, int32_t q1, int32_t q2, int32_t v0, int32_t v1, int32_t v2)
+{
+#if XGO_CORE_NARROW_CPU
+    const int32_t hi = q0 * (v0 >> 11) + q1 * (v1 >> 11) + q2 * (v2 >> 11);
+    const int32_t lo = q0 * (v0 & 0x7FF) + q1 * (v1 & 0x7FF) + q2 * (v2 & 0x7FF); /* S = hi 2^11 + lo */
+    return (hi >> 7) + ((((hi & 127) << 11) + lo + (1 << 17)) >> 18);
+#else
+    const int64_t sum = (int64_t)q0 * v0 + (int64_t)q1 * v1 + (int64_t)q2 * v2;
+    return (int32_t)((sum + (1 << 17)) >> 18);
+#endif
+}
+
+#define NEAR_LIMIT_UM ((1 << 22) - 1)
+
+static int near3(int32_t a, int32_t b, int32_t c)
+{
+    return a <= NEAR_LIMIT_UM && a >= -NEAR_LIMIT_UM && b <= NEAR_LIMIT_UM && b >= -NEAR_LIMIT_UM &&
+           c <= NEAR_LIMIT_UM && c >= -NEAR_LIMIT_UM;
+}
+
+/* The same for any int32 v (64-bit products; far coordinates only). */
+static int64_t dot3_q30_far(xgo_q30_t r0, xgo_q30_t r1, xgo_q30_t r2, int32_t v0, int32_t v1, int32_t v2)
+{
+    return round_shift(mul_cold(r0, v0) + mul_cold(r1, v1) + mul_cold(r2, v2), 30);
+}
+
+/* The rotation's entries in Q18, rounded (|q| <= 2^18). */
+static void rot_q18(const xgo_q30_t rot[XGO_ROT_COUNT], int32_t q[XGO_ROT_COUNT])
+{
+    int i;
+    for (i = 0; i < XGO_ROT_COUNT; ++i) {
+        q[i] = (rot[i] + (1 << 11)) >> 12;
+    }
+}
+
 void xgo_body_ik_rotated(const xgo_profile_t *p, const xgo_body_pose_t *pose,
                          const xgo_q30_t rot[XGO_ROT_COUNT],
                          const xgo_vec3_t feet_machine_um[XGO_LEG_COUNT],
                          xgo_vec3_t feet_leg_um[XGO_LEG_COUNT])
 {
+    int32_t q[XGO_ROT_COUNT];
     int leg;
+    rot_q18(rot, q);
     for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
         /* foot relative to the body centre, in machine axes, saturated to
-         * int32 so the products below stay within 2^61 */
-        int32_t vx = sat_i32((int64_t)feet_machine_um[leg].x - pose->x_um);
-        int32_t vy = sat_i32((int64_t)feet_machine_um[leg].y - pose->y_um);
-        int32_t vz = sat_i32((int64_t)feet_machine_um[leg].z - pose->z_um);
-        /* into body axes: R^T v; each term < 2^61, the sum < 2^63 */
-        int64_t bx = round_shift(xgo_mul_wide(rot[XGO_ROT(0, 0)], vx) + xgo_mul_wide(rot[XGO_ROT(1, 0)], vy) + xgo_mul_wide(rot[XGO_ROT(2, 0)], vz), 30);
-        int64_t by = round_shift(xgo_mul_wide(rot[XGO_ROT(0, 1)], vx) + xgo_mul_wide(rot[XGO_ROT(1, 1)], vy) + xgo_mul_wide(rot[XGO_ROT(2, 1)], vz), 30);
-        int64_t bz = round_shift(xgo_mul_wide(rot[XGO_ROT(0, 2)], vx) + xgo_mul_wide(rot[XGO_ROT(1, 2)], vy) + xgo_mul_wide(rot[XGO_ROT(2, 2)], vz), 30);
-        /* into the leg frame: origin at the thigh joint, z down */
+         * int32, then into body axes (R^T v) and the leg frame (origin at
+         * the thigh joint, z down) */
+        const int32_t vx = sat_i32((int64_t)feet_machine_um[leg].x - pose->x_um);
+        const int32_t vy = sat_i32((int64_t)feet_machine_um[leg].y - pose->y_um);
+        const int32_t vz = sat_i32((int64_t)feet_machine_um[leg].z - pose->z_um);
         int32_t ox, oy;
         leg_origin(p, leg, &ox, &oy);
-        feet_leg_um[leg].x = sat_i32(bx - ox);
-        feet_leg_um[leg].y = sat_i32(by - oy);
-        feet_leg_um[leg].z = sat_i32(-bz);
+        if (near3(vx, vy, vz)) { /* every value below 2^24: no saturation */
+            feet_leg_um[leg].x = dot3_q18(q[0], q[3], q[6], vx, vy, vz) - ox;
+            feet_leg_um[leg].y = dot3_q18(q[1], q[4], q[7], vx, vy, vz) - oy;
+            feet_leg_um[leg].z = -dot3_q18(q[2], q[5], q[8], vx, vy, vz);
+        } else {
+            feet_leg_um[leg].x = sat_i32(dot3_q30_far(rot[0], rot[3], rot[6], vx, vy, vz) - ox);
+            feet_leg_um[leg].y = sat_i32(dot3_q30_far(rot[1], rot[4], rot[7], vx, vy, vz) - oy);
+            feet_leg_um[leg].z = sat_i32(-dot3_q30_far(rot[2], rot[5], rot[8], vx, vy, vz));
+        }
     }
 }
 
@@ -500,12 +554,20 @@ void xgo_body_to_machine_rotated(const xgo_body_pose_t *pose, const xgo_q30_t ro
                                  const xgo_vec3_t body_um[XGO_LEG_COUNT],
                                  xgo_vec3_t machine_um[XGO_LEG_COUNT])
 {
+    int32_t q[XGO_ROT_COUNT];
     int leg;
+    rot_q18(rot, q);
     for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
         const int32_t bx = body_um[leg].x, by = body_um[leg].y, bz = body_um[leg].z;
-        machine_um[leg].x = sat_i32(round_shift(xgo_mul_wide(rot[XGO_ROT(0, 0)], bx) + xgo_mul_wide(rot[XGO_ROT(0, 1)], by) + xgo_mul_wide(rot[XGO_ROT(0, 2)], bz), 30) + pose->x_um);
-        machine_um[leg].y = sat_i32(round_shift(xgo_mul_wide(rot[XGO_ROT(1, 0)], bx) + xgo_mul_wide(rot[XGO_ROT(1, 1)], by) + xgo_mul_wide(rot[XGO_ROT(1, 2)], bz), 30) + pose->y_um);
-        machine_um[leg].z = sat_i32(round_shift(xgo_mul_wide(rot[XGO_ROT(2, 0)], bx) + xgo_mul_wide(rot[XGO_ROT(2, 1)], by) + xgo_mul_wide(rot[XGO_ROT(2, 2)], bz), 30) + pose->z_um);
+        if (near3(bx, by, bz)) {
+            machine_um[leg].x = sat_i32((int64_t)dot3_q18(q[0], q[1], q[2], bx, by, bz) + pose->x_um);
+            machine_um[leg].y = sat_i32((int64_t)dot3_q18(q[3], q[4], q[5], bx, by, bz) + pose->y_um);
+            machine_um[leg].z = sat_i32((int64_t)dot3_q18(q[6], q[7], q[8], bx, by, bz) + pose->z_um);
+        } else {
+            machine_um[leg].x = sat_i32(dot3_q30_far(rot[0], rot[1], rot[2], bx, by, bz) + pose->x_um);
+            machine_um[leg].y = sat_i32(dot3_q30_far(rot[3], rot[4], rot[5], bx, by, bz) + pose->y_um);
+            machine_um[leg].z = sat_i32(dot3_q30_far(rot[6], rot[7], rot[8], bx, by, bz) + pose->z_um);
+        }
     }
 }
 
