@@ -36,11 +36,43 @@ static int16_t to_lsb(int32_t q8)
     return (int16_t)(v > 32767 ? 32767 : (v < -32768 ? -32768 : v));
 }
 
-/* a * q30 value, result in the unit of a */
+/* a * q30 value, result in the unit of a: (a c + 2^29) >> 30.
+ * On a core without a widening multiply (XGO_CORE_NARROW_CPU) a small a
+ * (|a| < 2^20: every rate, a walk's horizontal accelerations) takes three
+ * 32-bit products with c's 10-bit pieces, c = c2 2^20 + c1 2^10 + c0
+ * (|c2| <= 2^10; 0 <= c1, c0 < 2^10), each of magnitude <= 2^30:
+ *   floor((a c + 2^29) / 2^30)
+ *     = floor((a c2 + floor((a c1 + floor((a c0 + 2^29) / 2^10)) / 2^10)) / 2^10)
+ * with every sum below 2^30 + 2^21 (int32): exact, so the same result as
+ * the 64-bit product (tools/mcu/run.sh compares). */
 static int32_t mul_q30(int32_t a, xgo_q30_t c)
 {
+#if XGO_CORE_NARROW_CPU
+    if ((uint32_t)a + (1u << 20) < (1u << 21)) {
+        const int32_t low = (a * (c & 1023) + (1 << 29)) >> 10;
+        const int32_t mid = (a * ((c >> 10) & 1023) + low) >> 10;
+        return (a * (c >> 20) + mid) >> 10;
+    }
+#endif
     return (int32_t)((xgo_mul_wide(a, c) + (1 << 29)) >> 30);
 }
+
+/* (v k + 2^15) >> 16 for a constant 0 < k < 2^31 and |v| <= 2^20 with
+ * |v (k >> 16)| < 2^31 (callers: ACCEL_Q16, GYRO_Q16 with their clamps).
+ * Narrow cores: k = kh 2^16 + km 2^8 + kl (km, kl < 2^8), so
+ *   floor((v k + 2^15) / 2^16) = v kh + floor((v km + floor((v kl + 2^15) / 2^8)) / 2^8),
+ * every product and sum within int32: exact. */
+static int32_t scale_q16(int32_t v, int32_t k)
+{
+#if XGO_CORE_NARROW_CPU
+    const int32_t low = (v * (k & 0xFF) + 32768) >> 8;
+    return v * (k >> 16) + ((v * ((k >> 8) & 0xFF) + low) >> 8);
+#else
+    return (int32_t)((xgo_mul_wide(v, k) + 32768) >> 16);
+#endif
+}
+/* 2^20 (D2_LIMIT_Q8) * 417 and 2^18 (the rate clamp) * 2099 < 2^31 */
+typedef char xgo_inertial_scale_fits_[(ACCEL_Q16 >> 16) <= 2047 && (GYRO_Q16 >> 16) <= 8191 ? 1 : -1];
 
 static void filter(int32_t state[3], const int32_t input[3], int16_t out[3])
 {
@@ -120,23 +152,24 @@ void xgo_inertial_tick_sc(xgo_inertial_t *s, const int64_t body_q8[3], const xgo
         memcpy(s->pos_q8[1], s->pos_q8[0], sizeof s->pos_q8[1]);
         s->history++;
     }
+    /* the history moves on as it is used (no copies after) */
     for (i = 0; i < 3; i++) {
         const int64_t d2 = body_q8[i] - 2 * s->pos_q8[0][i] + s->pos_q8[1][i];
-        a_q8[i] = (int32_t)((xgo_mul_wide(clamp32(d2, D2_LIMIT_Q8), ACCEL_Q16) + 32768) >> 16);
+        a_q8[i] = scale_q16(clamp32(d2, D2_LIMIT_Q8), ACCEL_Q16);
         d[i] = xgo_wrap_mdeg(att_mdeg[i] - s->att_mdeg[i]);
+        s->pos_q8[1][i] = s->pos_q8[0][i];
+        s->pos_q8[0][i] = body_q8[i];
+        s->att_mdeg[i] = att_mdeg[i];
     }
     attitude_trig(att_mdeg, &trig);
     specific_force(a_q8, heading_sc, &trig, f);
     body_rates(d, &trig, w);
     for (i = 0; i < 3; i++) {
         /* +-2^18 mdeg per tick is far beyond the sensor's range */
-        w[i] = (int32_t)((xgo_mul_wide(clamp32(w[i], 1 << 18), GYRO_Q16) + 32768) >> 16);
+        w[i] = scale_q16(clamp32(w[i], 1 << 18), GYRO_Q16);
     }
     filter(s->accel_q8, f, s->accel);
     filter(s->gyro_q8, w, s->gyro);
-    memcpy(s->pos_q8[1], s->pos_q8[0], sizeof s->pos_q8[1]);
-    memcpy(s->pos_q8[0], body_q8, sizeof s->pos_q8[0]);
-    memcpy(s->att_mdeg, att_mdeg, sizeof s->att_mdeg);
 }
 
 void xgo_inertial_body_position(const xgo_odometry_t *o, const xgo_body_pose_t *pose,
