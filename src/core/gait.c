@@ -115,6 +115,12 @@ uint32_t xgo_gait_duty_pct(uint8_t type)
 
 /* ------------------------------------------------------------ helpers */
 
+void gait_foot_velocity(const int32_t v[2], int32_t w_q24, int32_t x_um, int32_t y_um, int32_t out[2])
+{
+    out[0] = v[0] - mul_q_inline(w_q24, y_um, 24u);
+    out[1] = v[1] + mul_q_inline(w_q24, x_um, 24u);
+}
+
 static int32_t clamp32(int32_t v, int32_t lo, int32_t hi)
 {
     return v < lo ? lo : (v > hi ? hi : v);
@@ -228,7 +234,7 @@ static void touchdown_q8(const xgo_gait_t *g, const gait_tick_t *x, int leg, int
     /* tau^2 / 2; tau < 2^16 (pick_cadence), so tau^2 / 2^17 < 2^15 */
     const uint32_t tau2 = (uint32_t)mul_q_u16((int32_t)x->tau_q16, x->tau_q16, 17u);
     int c;
-    foot_velocity(x->vel, x->w_q24, g->stance_um[leg][0], g->stance_um[leg][1], f);
+    gait_foot_velocity(x->vel, x->w_q24, g->stance_um[leg][0], g->stance_um[leg][1], f);
     wf[0] = -mul_q(x->w_q24, f[1], 24u);
     wf[1] = mul_q(x->w_q24, f[0], 24u);
     for (c = 0; c < 2; ++c) {
@@ -257,7 +263,7 @@ static uint32_t fitted_rate(const xgo_gait_t *g, const gait_table_t *t, const in
     uint32_t ratio;
     int leg;
     for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
-        foot_velocity(v, w_q24, g->stance_um[leg][0], g->stance_um[leg][1], f[leg]);
+        gait_foot_velocity(v, w_q24, g->stance_um[leg][0], g->stance_um[leg][1], f[leg]);
         max_fx = max_u(max_fx, abs_u(f[leg][0]));
         max_fy = max_u(max_fy, abs_u(f[leg][1]));
     }
@@ -451,10 +457,10 @@ static uint32_t transient_rate(const xgo_gait_t *g, gait_tick_t *x, uint32_t rat
         if (g->swinging[leg]) {
             continue;
         }
-        foot_velocity(x->vel, x->w_q24, g->pos_q8[leg][0] >> 8, g->pos_q8[leg][1] >> 8, x->vf[leg]);
+        gait_foot_velocity(x->vel, x->w_q24, g->pos_q8[leg][0] >> 8, g->pos_q8[leg][1] >> 8, x->vf[leg]);
         remaining = 0u - (g->phase - t->lift[leg]);
         gait_midpoint_of(g, leg, x->vf[leg], half_time_q16(t, remaining), q);
-        foot_velocity(x->vel, x->w_q24, q[0], q[1], fm);
+        gait_foot_velocity(x->vel, x->w_q24, q[0], q[1], fm);
         for (c = 0; c < 2; ++c) {
             int32_t off = (g->pos_q8[leg][c] >> 8) - g->stance_um[leg][c];
             int32_t d;
@@ -515,7 +521,7 @@ static void stance_part(const gait_tick_t *x, int32_t pos_q8[2], uint32_t theta,
     if (before) {
         share = 65536u - share;
     }
-    foot_velocity(x->vel, x->w_q24, pos_q8[0] >> 8, pos_q8[1] >> 8, f);
+    gait_foot_velocity(x->vel, x->w_q24, pos_q8[0] >> 8, pos_q8[1] >> 8, f);
     for (c = 0; c < 2; ++c) {
         pos_q8[c] -= mul_q(mul_q(f[c], K_UMS_TO_Q8_TICK_Q31, 31u), (int32_t)share, 16u);
     }
@@ -703,8 +709,8 @@ static void swing_step(xgo_gait_t *g, gait_tick_t *x, int leg)
     }
     touchdown_q8(g, x, leg, td);
     land_point(g, leg, u, td);
-    foot_velocity(x->vel, x->w_q24, g->lift_q8[leg][0] >> 8, g->lift_q8[leg][1] >> 8, f0);
-    foot_velocity(x->vel, x->w_q24, td[0] >> 8, td[1] >> 8, f1);
+    gait_foot_velocity(x->vel, x->w_q24, g->lift_q8[leg][0] >> 8, g->lift_q8[leg][1] >> 8, f0);
+    gait_foot_velocity(x->vel, x->w_q24, td[0] >> 8, td[1] >> 8, f1);
     for (c = 0; c < 2; ++c) {
         /* end tangents in 1/256 um per unit of psi: -f * T_swing
          * (T_swing < 2^16, move_feet) */

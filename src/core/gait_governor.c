@@ -76,8 +76,8 @@ static int32_t governor_lambda(const xgo_gait_t *g, const gait_table_t *t, uint3
         }
         r = 0u - (phase - t->lift[leg]);
         gait_stance_midpoint(g, leg, base, wb, half_time_q16(t, r), q);
-        foot_velocity(base, wb, q[0], q[1], a);
-        foot_velocity(prop, wp, q[0], q[1], e);
+        gait_foot_velocity(base, wb, q[0], q[1], a);
+        gait_foot_velocity(prop, wp, q[0], q[1], e);
         for (c = 0; c < 2; ++c) {
             int64_t lo, hi;
             int32_t l;
@@ -129,7 +129,7 @@ int gait_switch_fits(const xgo_gait_t *g, const gait_table_t *n, uint32_t p, uin
             continue; /* lifts now */
         }
         gait_stance_midpoint(g, leg, v, w, half_time_q16(n, r), q);
-        foot_velocity(v, w, q[0], q[1], f);
+        gait_foot_velocity(v, w, q[0], q[1], f);
         for (c = 0; c < 2; ++c) {
             int64_t lo, hi;
             int64_t s = (int64_t)f[c] * r;

@@ -69,8 +69,16 @@ typedef struct gait_tick_s {
  * rounding shift works on its two 32-bit words: libgcc's 64 x 64 multiply
  * and 64-bit shifts by a variable q (the compiler does not inline this at
  * -Os) cost about three times as much. Both forms give the same low 32 bits
- * of the shifted sum, so the same result. */
-static inline int32_t mul_q(int32_t a, int32_t b, unsigned q)
+ * of the shifted sum, so the same result. mul_q_inline: the same, always
+ * inline (at a constant q the shifts fold): for the few sites that run
+ * several times a tick inside one small function (gait_foot_velocity). */
+#if defined(__GNUC__)
+#define GAIT_ALWAYS_INLINE static inline __attribute__((always_inline))
+#else
+#define GAIT_ALWAYS_INLINE static inline
+#endif
+
+GAIT_ALWAYS_INLINE int32_t mul_q_inline(int32_t a, int32_t b, unsigned q)
 {
 #if XGO_CORE_NARROW_CPU
     const uint64_t p = (uint64_t)xgo_mul_wide(a, b);
@@ -80,6 +88,11 @@ static inline int32_t mul_q(int32_t a, int32_t b, unsigned q)
 #else
     return (int32_t)(((int64_t)a * b + ((int64_t)1 << (q - 1u))) >> q);
 #endif
+}
+
+static inline int32_t mul_q(int32_t a, int32_t b, unsigned q)
+{
+    return mul_q_inline(a, b, q);
 }
 
 /* mul_q(a, b, q) for 0 <= b < 2^16, any a, 1 <= q <= 31: the same result,
@@ -97,10 +110,7 @@ static inline int32_t mul_q(int32_t a, int32_t b, unsigned q)
  * constant: about 12 instructions instead of a 45-instruction call.
  * test/test_gait_arith.c sweeps the edges against a 64-bit product.
  * Elsewhere (one widening multiply instruction): plain mul_q. */
-#if defined(__GNUC__)
-__attribute__((always_inline))
-#endif
-static inline int32_t mul_q_u16(int32_t a, uint32_t b, unsigned q)
+GAIT_ALWAYS_INLINE int32_t mul_q_u16(int32_t a, uint32_t b, unsigned q)
 {
 #if XGO_CORE_NARROW_CPU
     const uint32_t hi = (uint32_t)((a >> 16) * (int32_t)b);
@@ -123,13 +133,9 @@ static inline uint32_t abs_u(int32_t v)
 }
 
 /* Foot velocity relative to the ground for a point (x, y) of the body:
- * v + w x p, in um/s. w in rad/s Q24. */
-static inline void foot_velocity(const int32_t v[2], int32_t w_q24, int32_t x_um, int32_t y_um,
-                                 int32_t out[2])
-{
-    out[0] = v[0] - mul_q(w_q24, y_um, 24u);
-    out[1] = v[1] + mul_q(w_q24, x_um, 24u);
-}
+ * v + w x p, in um/s. w in rad/s Q24. About ten a tick: one copy (gait.c)
+ * with its two products inline. */
+void gait_foot_velocity(const int32_t v[2], int32_t w_q24, int32_t x_um, int32_t y_um, int32_t out[2]);
 
 static inline int32_t yaw_q24(int32_t w_mdeg_s)
 {
@@ -173,7 +179,7 @@ static inline void gait_stance_midpoint(const xgo_gait_t *g, int leg, const int3
                                         int32_t w_q24, uint32_t half_q16, int32_t q[2])
 {
     int32_t f[2];
-    foot_velocity(v, w_q24, g->pos_q8[leg][0] >> 8, g->pos_q8[leg][1] >> 8, f);
+    gait_foot_velocity(v, w_q24, g->pos_q8[leg][0] >> 8, g->pos_q8[leg][1] >> 8, f);
     gait_midpoint_of(g, leg, f, half_q16, q);
 }
 
