@@ -206,6 +206,23 @@ static void test_frame_length_limit(void)
                              after[XGO_DIAG_FRAMES_OK] - before[XGO_DIAG_FRAMES_OK]);
 }
 
+/* A read whose reply does not fit the transmit buffer even when it is empty
+ * (firmware: 128 bytes, so reads of up to 120) is dropped whole and counted
+ * in tx_overflow; the next read is answered. The full core answers both. */
+static void test_reply_longer_than_transmit_buffer(void)
+{
+    static uint8_t reply[256];
+    uint32_t before[XGO_DIAG_COUNT], after[XGO_DIAG_COUNT];
+    const int fits = XGO_TX_BUFFER_SIZE >= 121u + 8u;
+    init_model(XGO_MODEL_MINI);
+    xgo_board_counters(&board, before);
+    TEST_ASSERT_EQUAL_UINT(fits ? 129u : 0u, wire_read(0x00, 121, reply, sizeof reply));
+    TEST_ASSERT_EQUAL_UINT(128, wire_read(0x00, 120, reply, sizeof reply));
+    xgo_board_counters(&board, after);
+    TEST_ASSERT_EQUAL_UINT32(fits ? 0u : 1u,
+                             after[XGO_DIAG_TX_OVERFLOW] - before[XGO_DIAG_TX_OVERFLOW]);
+}
+
 /* Names only where they are built in; the lookups answer either way. */
 static void test_names(void)
 {
@@ -234,6 +251,7 @@ int main(void)
     RUN_TEST(test_spec_read_reply);
     RUN_TEST(test_action_runs);
     RUN_TEST(test_frame_length_limit);
+    RUN_TEST(test_reply_longer_than_transmit_buffer);
     RUN_TEST(test_names);
     return UNITY_END();
 }

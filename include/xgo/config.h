@@ -21,7 +21,11 @@
 #define XGO_TICK_HZ 500u
 
 /* Bytes of the board's transmit ring: replies wait there until the port drains
- * them. A reply is at most 255 bytes; smaller MCUs may go down to that. */
+ * them. A reply is at most 255 bytes (a read of 247). A smaller ring answers
+ * the reads whose reply fits it; a longer one is dropped whole and counted
+ * (tx_overflow), as a reply that finds the ring full is. The firmware images
+ * take 128: reads of up to 120 bytes (the vendor library's longest is 24,
+ * the diagnostic block 60; docs/mcu.md "Build options"). */
 #ifndef XGO_TX_BUFFER_SIZE
 #define XGO_TX_BUFFER_SIZE 1024u
 #endif
@@ -113,8 +117,8 @@
 void xgo_assert_failed(const char *file, int line, const char *expr);
 #endif
 
-#if XGO_TX_BUFFER_SIZE < 255u || XGO_TX_BUFFER_SIZE > 65535u
-#error "XGO_TX_BUFFER_SIZE must hold one whole reply (255 bytes) and fit uint16_t"
+#if XGO_TX_BUFFER_SIZE < 9u || XGO_TX_BUFFER_SIZE > 65535u
+#error "XGO_TX_BUFFER_SIZE must hold a one-byte reply (9 bytes) and fit uint16_t"
 #endif
 
 #if XGO_PARSER_FRAME_MAX < 9u || XGO_PARSER_FRAME_MAX > 255u

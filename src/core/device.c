@@ -17,10 +17,11 @@
 
 #define RING_MASK ((uint16_t)(XGO_PORT_RX_RING_SIZE - 1u))
 
-/* The helpers with buffers of their own (a transmit chunk, the servo
- * positions, the NV record) stay out of line: inlined, their arrays would
- * sit in xgo_device_run's frame under every control tick, the deepest call
- * path of a firmware image (docs/mcu.md "Sizes"). */
+/* The helpers with buffers or many locals of their own (a transmit chunk,
+ * the servo positions, the NV record, the input's ring arithmetic) stay out
+ * of line: inlined, they would sit in xgo_device_run's frame under every
+ * control tick, the deepest call path of a firmware image (docs/mcu.md
+ * "Sizes"). */
 #if defined(__GNUC__)
 #define OWN_FRAME __attribute__((noinline))
 #else
@@ -74,10 +75,17 @@ void xgo_device_stats(const xgo_device_t *d, xgo_device_stats_t *out)
     *out = d->stats;
 }
 
+/* The longest reply the board queues: a whole frame, or the whole transmit
+ * buffer when that is smaller (xgo/config.h: a longer reply is dropped and
+ * counted, never waited for). */
+#define REPLY_MAX                                                                  \
+    (XGO_TX_BUFFER_SIZE < XGO_FRAME_MAX_LEN ? (size_t)XGO_TX_BUFFER_SIZE            \
+                                            : (size_t)XGO_FRAME_MAX_LEN)
+
 /* Replies that fit the board's transmit buffer whatever the requests ask. */
 static size_t reply_room(const xgo_device_t *d)
 {
-    return (XGO_TX_BUFFER_SIZE - xgo_board_tx_pending(&d->board)) / XGO_FRAME_MAX_LEN;
+    return (XGO_TX_BUFFER_SIZE - xgo_board_tx_pending(&d->board)) / REPLY_MAX;
 }
 
 /* Moves replies to the port as far as it takes them. */
@@ -99,8 +107,8 @@ OWN_FRAME static void send_replies(xgo_device_t *d)
 /* Feeds the ring to the board in chunks whose replies surely fit: a chunk of
  * 9k - 8 bytes completes at most k frames (a request is at least 9 bytes and
  * the first may need only one more byte), each answered by at most one reply
- * of at most XGO_FRAME_MAX_LEN bytes. */
-static void feed_input(xgo_device_t *d, uint32_t now_ms)
+ * of at most REPLY_MAX bytes. */
+OWN_FRAME static void feed_input(xgo_device_t *d, uint32_t now_ms)
 {
     for (;;) {
         const uint16_t tail = d->rx_tail;

@@ -17,9 +17,10 @@
 #     through a register) may reach any function whose address is in a
 #     literal pool; recursion is cut at the second visit; functions without
 #     a .su entry (libgcc, assembly) count 0 bytes (libgcc's helpers the
-#     images link push at most a few registers).
+#     images link push at most a few registers). With link-time optimisation
+#     the core's frames are in the .su written at the link (xgo-fw.elf.ltrans*.su).
 # Prints one line per figure; exits 1 if an image has a soft-float helper or
-# a 64-bit division reachable from the tick. Needs arm-none-eabi binutils.
+# a 64-bit division reachable from the tick, or no xgo_board_tick to walk from. Needs arm-none-eabi binutils.
 set -euo pipefail
 
 soft_float='^(__aeabi_[fd][a-z0-9]+|__(add|sub|mul|div|neg|cmp|eq|ne|lt|le|gt|ge|un|fix|fixuns|float|floatun|extend|trunc)[sdx]f[0-9a-z]*|__aeabi_[ui]?[lf]2[fd]|__aeabi_[fd]2[a-z]+)$'
@@ -64,8 +65,10 @@ stack_bound() {
       for (i = 1; i <= length(h); i++) v = v * 16 + index("0123456789abcdef", substr(h, i, 1)) - 1
       return v
     }
-    function frame(f,   b) {
+    function frame(f,   b) { # a clone "f.isra.0" is "f.isra" in the .su, "f.lto_priv.0" is "f"
       if (f in su) return su[f]
+      b = f; sub(/\.[0-9]+$/, "", b)
+      if (b in su) return su[b]
       b = f; sub(/\..*/, "", b)
       return (b in su) ? su[b] : 0
     }
@@ -137,6 +140,13 @@ for elf in "$@"; do
     status=1
   else
     echo "  no soft-float helper linked"
+  fi
+  if ! grep -qE ' [Tt] xgo_board_tick$' <<<"$(arm-none-eabi-nm "$elf")"; then
+    # Inlined away (link-time optimisation without ports/CMakeLists.txt's
+    # --undefined): the walk below would prove nothing.
+    echo "  FAIL xgo_board_tick is not a function of the image: nothing to walk from"
+    status=1
+    continue
   fi
   from_tick=$(reachable "$div64" xgo_board_tick)
   divs=$(echo "$from_tick" | grep -E "${div64%\$} <-" || true)

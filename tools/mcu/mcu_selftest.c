@@ -346,13 +346,27 @@ static void write_reg(uint8_t addr, uint8_t v, uint32_t now_ms)
     xgo_test_write1(&board, addr, v, now_ms);
 }
 
-/* Read count registers at addr over the wire; checks the reply's framing
- * independently of the core's encoder and returns its data in data. */
+/* The longest read whose reply fits the transmit buffer (xgo/config.h; the
+ * firmware configuration's 128 bytes answer reads of up to 120). */
+#define READ_MAX                                                                   \
+    (XGO_TX_BUFFER_SIZE - XGO_FRAME_OVERHEAD < XGO_FRAME_MAX_DATA                  \
+         ? XGO_TX_BUFFER_SIZE - XGO_FRAME_OVERHEAD                                 \
+         : XGO_FRAME_MAX_DATA)
+
+/* Read count registers at addr over the wire, in requests of at most
+ * READ_MAX bytes (one with the host's buffer); checks each reply's framing
+ * independently of the core's encoder and returns the data in data. */
 static void read_regs(uint8_t addr, uint8_t count, uint32_t now_ms, uint8_t *data)
 {
-    const xgo_test_reply_t problem = xgo_test_read(&board, addr, count, now_ms, data);
-    if (problem != XGO_TEST_REPLY_OK) {
-        fail(FAIL_FRAMING, xgo_test_reply_name(problem));
+    while (count > 0) {
+        const uint8_t n = (uint8_t)(count < READ_MAX ? count : READ_MAX);
+        const xgo_test_reply_t problem = xgo_test_read(&board, addr, n, now_ms, data);
+        if (problem != XGO_TEST_REPLY_OK) {
+            fail(FAIL_FRAMING, xgo_test_reply_name(problem));
+        }
+        addr = (uint8_t)(addr + n);
+        data += n;
+        count = (uint8_t)(count - n);
     }
 }
 
