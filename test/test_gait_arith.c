@@ -82,9 +82,25 @@ static void test_mul_q_u16_matches_the_wide_product(void)
     TEST_ASSERT_TRUE(checked > 200000u);
 }
 
+/* The yaw widening: every yaw rate up to the reference, and beyond it (the
+ * share saturates), against the division gait.h states. */
+static void test_yaw_widening_is_the_exact_division(void)
+{
+    int32_t w;
+    for (w = -XGO_GAIT_YAW_REF_MDEG_S - 1000; w <= XGO_GAIT_YAW_REF_MDEG_S + 1000; ++w) {
+        int64_t yaw = w < 0 ? -(int64_t)w : w;
+        int64_t expect = (yaw > XGO_GAIT_YAW_REF_MDEG_S ? XGO_GAIT_YAW_REF_MDEG_S : yaw) *
+                         XGO_GAIT_YAW_REACH_Y_UM / XGO_GAIT_YAW_REF_MDEG_S;
+        TEST_ASSERT_EQUAL_UINT32((uint32_t)expect, gait_yaw_widening_um(w));
+    }
+    TEST_ASSERT_EQUAL_UINT32(XGO_GAIT_YAW_REACH_Y_UM, gait_yaw_widening_um(INT32_MIN));
+    TEST_ASSERT_EQUAL_UINT32(XGO_GAIT_YAW_REACH_Y_UM, gait_yaw_widening_um(INT32_MAX));
+}
+
 int main(void)
 {
     UNITY_BEGIN();
     RUN_TEST(test_mul_q_u16_matches_the_wide_product);
+    RUN_TEST(test_yaw_widening_is_the_exact_division);
     return UNITY_END();
 }

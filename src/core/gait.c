@@ -216,12 +216,7 @@ int xgo_gait_is_standing(const xgo_gait_t *g)
  * reference rate (the reach box grows alongside, see gait_reach_y). */
 static uint32_t half_stride_y(int32_t w_mdeg_s)
 {
-    uint32_t yaw = abs_u(w_mdeg_s);
-    if (yaw > (uint32_t)XGO_GAIT_YAW_REF_MDEG_S) {
-        yaw = XGO_GAIT_YAW_REF_MDEG_S;
-    }
-    return XGO_GAIT_HALF_STRIDE_Y_UM +
-           yaw * (uint32_t)XGO_GAIT_YAW_HALF_STRIDE_Y_UM / (uint32_t)XGO_GAIT_YAW_REF_MDEG_S;
+    return XGO_GAIT_HALF_STRIDE_Y_UM + gait_yaw_widening_um(w_mdeg_s);
 }
 
 /* Touchdown point of a leg: the stance point plus half the stance travel,

@@ -150,16 +150,41 @@ static inline uint32_t half_time_q16(const gait_table_t *t, uint32_t r)
     return (uint32_t)(xgo_umul_wide(r, t->k_half) >> 39);
 }
 
-/* Reach box of a stance foot (um) for yaw rate w: x fixed, y widened by the
- * yaw share. */
-static inline int32_t gait_reach_y(int32_t w_mdeg_s)
+/* The y widening (um) of the stride budget and of the reach box under yaw:
+ * min(|w|, 100 deg/s) * 14 mm / (100 deg/s), rounded down (gait.h; the
+ * typedef below stops the build if those constants change). It is
+ * floor(7 yaw / 50) = floor(floor(7 yaw / 2) / 25). On a Cortex-M0 (no divide
+ * instruction: a libgcc call of about 100 instructions, twice a tick) the
+ * last division is a reciprocal multiply: for y = floor(7 yaw / 2) <= 350000,
+ * floor(y 5243 / 2^17) exceeds floor(y / 25) by at most y 3 / (25 2^17) < 0.33
+ * (5243 = (2^17 + 3) / 25; y 5243 < 2^31), so by 0 or 1, which one
+ * comparison takes back. test_gait_arith checks every yaw. */
+typedef char gait_yaw_widening_is_7_in_50[(XGO_GAIT_YAW_HALF_STRIDE_Y_UM == 14000 &&
+                                           XGO_GAIT_YAW_REACH_Y_UM == 14000 &&
+                                           XGO_GAIT_YAW_REF_MDEG_S == 100000) ? 1 : -1];
+
+static inline uint32_t gait_yaw_widening_um(int32_t w_mdeg_s)
 {
     uint32_t yaw = abs_u(w_mdeg_s);
     if (yaw > (uint32_t)XGO_GAIT_YAW_REF_MDEG_S) {
         yaw = XGO_GAIT_YAW_REF_MDEG_S;
     }
-    return XGO_GAIT_REACH_Y_UM +
-           (int32_t)(yaw * (uint32_t)XGO_GAIT_YAW_REACH_Y_UM / (uint32_t)XGO_GAIT_YAW_REF_MDEG_S);
+#if XGO_CORE_NARROW_CPU
+    {
+        const uint32_t y = (yaw * 7u) >> 1;
+        const uint32_t q = (y * 5243u) >> 17;
+        return q * 25u > y ? q - 1u : q;
+    }
+#else
+    return yaw * (uint32_t)XGO_GAIT_YAW_REACH_Y_UM / (uint32_t)XGO_GAIT_YAW_REF_MDEG_S;
+#endif
+}
+
+/* Reach box of a stance foot (um) for yaw rate w: x fixed, y widened by the
+ * yaw share. */
+static inline int32_t gait_reach_y(int32_t w_mdeg_s)
+{
+    return XGO_GAIT_REACH_Y_UM + (int32_t)gait_yaw_widening_um(w_mdeg_s);
 }
 
 /* Midpoint of the rest of a planted foot's path (um), estimated with the
