@@ -213,15 +213,35 @@ uint32_t xgo_isqrt64(uint64_t x)
     return y >> (s / 2u);
 }
 
+/* The table's chord for m in [2^30, 2^32): within 2 of floor(sqrt(m)),
+ * clamped to 16 bits (isqrt_norm32 without its exact steps). */
+static uint32_t sqrt_chord32(uint32_t m)
+{
+    const uint32_t i = (m >> 25) - 32u, f = (m >> 9) & 0xFFFFu;
+    const uint32_t a = sqrt_tab[i], b = sqrt_tab[i + 1u];
+    const uint32_t y = 32768u + a + (((b - a) * f) >> 16); /* (b - a) < 2^9 */
+    return y > 65535u ? 65535u : y;
+}
+
 uint32_t xgo_sqrt64_near(uint64_t x)
 {
-    const uint32_t hi = (uint32_t)(x >> 32);
+    uint32_t hi = (uint32_t)(x >> 32), lo, y0, rem, y;
     unsigned s;
     if (hi == 0u) {
         return xgo_isqrt32((uint32_t)x);
     }
     s = xgo_clz32(hi) & ~1u;
-    return isqrt_norm64_step(x << s) >> (s / 2u);
+    x <<= s; /* [2^62, 2^64) */
+    hi = (uint32_t)(x >> 32);
+    lo = (uint32_t)x;
+    y0 = sqrt_chord32(hi);
+    if (y0 * y0 > hi) { /* at most one above the floor: the remainder >= 0 */
+        --y0;
+    }
+    rem = hi - y0 * y0; /* < 6 y0 < 2^19 (y0 down to 2 below the floor) */
+    /* the Newton step in units of 4 so the dividend fits 32 bits */
+    y = (y0 << 16) + ((((rem << 13) + (lo >> 19)) / y0) << 2);
+    return (y < (y0 << 16) ? 0xFFFFFFFFu : y) >> (s / 2u);
 }
 
 xgo_q16_t xgo_q16_sqrt(xgo_q16_t x)
@@ -555,6 +575,14 @@ static xgo_bam_t atan2_u32(uint32_t ux, uint32_t uy, int xneg, int yneg)
 static uint32_t abs_u32(int32_t v)
 {
     return v < 0 ? 0u - (uint32_t)v : (uint32_t)v;
+}
+
+xgo_bam_t xgo_atan2_len30(int32_t y, int32_t x)
+{
+    const uint32_t ux = abs_u32(x), uy = abs_u32(y);
+    const int swap = uy > ux;
+    /* the larger is at least 2^28.5: 2^5 down lands in [2^23.5, 2^25] */
+    return fold(atan_octant((swap ? uy : ux) >> 5, (swap ? ux : uy) >> 5), swap, x < 0, y < 0);
 }
 
 xgo_bam_t xgo_atan2(int32_t y, int32_t x)

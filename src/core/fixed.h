@@ -149,10 +149,11 @@ static inline unsigned xgo_bit_length(uint64_t v)
 uint32_t xgo_isqrt32(uint32_t x);
 uint32_t xgo_isqrt64(uint64_t x);
 
-/* sqrt(x) within 2^(k/2 - 15) of it for x in [2^k, 2^(k+1)), k >= 32
- * (relative 2^-30), exact below 2^32: the exact root's method without its
- * final compares (a Newton step from the table root lands within 2 at
- * 32-bit scale), for callers that round anyway (the leg IK). */
+/* sqrt(x) near floor(sqrt(x)): exact below 2^32; above, the table's chord
+ * and one Newton step (in 32-bit division) without the exact root's
+ * compares, for callers that round anyway (the leg IK). Measured error:
+ * see docs/fixed-point.md (within a few units of a 32-bit root, relative
+ * 2^-29). */
 uint32_t xgo_sqrt64_near(uint64_t x);
 
 /* sqrt(x) in Q16.16, rounded to nearest; x <= 0 gives 0. Max error 0.5 LSB. */
@@ -210,6 +211,12 @@ xgo_q30_t xgo_cos(xgo_bam_t a);
  * rad, 3.8e-6 degree) relative to the exact angle of the integer pair (the
  * larger component keeps 25 bits); asserted bound 64 LSB. */
 xgo_bam_t xgo_atan2(int32_t y, int32_t x);
+
+/* The same for a vector whose length is within [2^29, 2^30] (|x|, |y| <=
+ * 2^30): no normalisation, the components cut to 2^-5 (24 bits of the
+ * ratio kept). The leg IK's knee angle: sin and cos scaled to 30 bits.
+ * Measured max error over that domain: see docs/fixed-point.md. */
+xgo_bam_t xgo_atan2_len30(int32_t y, int32_t x);
 
 /* Same for 64-bit components (both are scaled down together first, so the
  * angle keeps 25 bits of relative precision). Measured max error 25.8 LSB of

@@ -89,7 +89,7 @@ static uint32_t sqrt64_round_near(uint64_t v)
 /* ------------------------------------------------------------ planar IK */
 
 typedef struct planar_s {
-    int64_t l1, l2;     /* q4 */
+    int32_t l1, l2;     /* q4 */
     int64_t sum_sq;     /* l1^2 + l2^2 */
     int64_t two_l1l2;   /* 2 l1 l2, and the shift that cuts it to 30 bits */
     unsigned d_shift;
@@ -101,9 +101,9 @@ typedef struct planar_s {
     int arcs_ready;
     int32_t g_lo, g_hi; /* geometric knee angle limits, signed BAM */
     int32_t t_lo, t_hi; /* hip pitch limits, signed BAM */
-    int64_t hip_r[2];    /* g at g_lo / g_hi: radius of the foot's circle about the hip, q4 */
+    int32_t hip_r[2];    /* g at g_lo / g_hi: radius of the foot's circle about the hip, q4 */
     xgo_bam_t hip_a[2];  /* and the foot's u-angle past the thigh */
-    int64_t knee_x[2], knee_h[2]; /* t2 at t_lo / t_hi: the knee, q4 */
+    int32_t knee_x[2], knee_h[2]; /* t2 at t_lo / t_hi: the knee, q4 */
 } planar_t;
 
 typedef struct candidate_s {
@@ -144,14 +144,14 @@ static void planar_arcs(planar_t *pl)
         xgo_q30_t sg, cg, st, ct;
         int64_t fx, fh;
         xgo_sincos((uint32_t)gl, &sg, &cg);
-        fx = round_shift(pl->l2 * cg, 30); /* foot in the thigh frame */
-        fh = pl->l1 + round_shift(pl->l2 * sg, 30);
-        pl->hip_r[side] = (int64_t)isqrt64_round((uint64_t)(fx * fx + fh * fh));
+        fx = round_shift(mul_cold(pl->l2, cg), 30); /* foot in the thigh frame */
+        fh = pl->l1 + round_shift(mul_cold(pl->l2, sg), 30);
+        pl->hip_r[side] = (int32_t)isqrt64_round((uint64_t)(fx * fx + fh * fh));
         pl->hip_a[side] = u_angle64(fx, fh); /* foot direction past the thigh */
         /* t2 fixed at a limit: foot on a circle about the knee */
         xgo_sincos((uint32_t)tl, &st, &ct);
-        pl->knee_x[side] = -round_shift(pl->l1 * st, 30);
-        pl->knee_h[side] = round_shift(pl->l1 * ct, 30);
+        pl->knee_x[side] = (int32_t)-round_shift(mul_cold(pl->l1, st), 30);
+        pl->knee_h[side] = (int32_t)round_shift(mul_cold(pl->l1, ct), 30);
     }
     pl->arcs_ready = 1;
 }
@@ -173,25 +173,25 @@ static void planar_project(planar_t *pl, int64_t x, int64_t h, xgo_bam_t *g, xgo
     for (side = 0; side < 2; ++side) {
         /* g fixed at a limit: foot on a circle about the hip */
         int32_t gl = side ? pl->g_hi : pl->g_lo;
-        int64_t r = pl->hip_r[side];
+        int32_t r = pl->hip_r[side];
         xgo_bam_t a = pl->hip_a[side];
         xgo_q30_t sp, cp;
         xgo_bam_t psi = clamp_arc(target, (uint32_t)pl->t_lo + a, (uint32_t)pl->t_hi - (uint32_t)pl->t_lo);
         xgo_sincos(psi, &sp, &cp);
-        consider(&best, -round_shift(r * sp, 30), round_shift(r * cp, 30), x, h, (uint32_t)gl,
+        consider(&best, -round_shift(mul_cold(r, sp), 30), round_shift(mul_cold(r, cp), 30), x, h, (uint32_t)gl,
                  psi - a);
     }
     for (side = 0; side < 2; ++side) {
         /* t2 fixed at a limit: foot on a circle about the knee */
         int32_t tl = side ? pl->t_hi : pl->t_lo;
-        int64_t kx = pl->knee_x[side], kh = pl->knee_h[side];
+        int32_t kx = pl->knee_x[side], kh = pl->knee_h[side];
         xgo_q30_t sb, cb;
         xgo_bam_t b, b_lo;
         /* shank u-angle b = t2 + g - 90deg, g within its limits */
         b_lo = (uint32_t)tl + (uint32_t)pl->g_lo - XGO_BAM_90;
         b = clamp_arc(u_angle64(x - kx, h - kh), b_lo, (uint32_t)pl->g_hi - (uint32_t)pl->g_lo);
         xgo_sincos(b, &sb, &cb);
-        consider(&best, kx - round_shift(pl->l2 * sb, 30), kh + round_shift(pl->l2 * cb, 30), x, h,
+        consider(&best, kx - round_shift(mul_cold(pl->l2, sb), 30), kh + round_shift(mul_cold(pl->l2, cb), 30), x, h,
                  b - (uint32_t)tl + XGO_BAM_90, (uint32_t)tl);
     }
     *g = best.g;
@@ -239,7 +239,7 @@ static int planar_ik(planar_t *pl, int32_t x, int32_t h, leg_solution_t *s)
     nn = (int32_t)(n >> pl->d_shift);
     nn = nn > dn ? dn : (nn < -dn ? -dn : nn);
     cn = sqrt64_round_near(xgo_umul_wide((uint32_t)(dn - nn), (uint32_t)(dn + nn))); /* < 2^30 */
-    s->g = xgo_atan2(nn, (int32_t)cn);
+    s->g = xgo_atan2_len30(nn, (int32_t)cn); /* |(nn, cn)| = dn in [2^29, 2^30) */
     /* t2 = u-angle of the foot (x, h) minus the foot's angle past the thigh,
      * the u-angle of (a, b) = (L2 cos g, L1 + L2 sin g) (scaled by dn). As
      * complex numbers h - ix and b - ia, the difference of their angles is
@@ -247,7 +247,7 @@ static int planar_ik(planar_t *pl, int32_t x, int32_t h, leg_solution_t *s)
      * a and b are cut to 30 bits first so the products fit 64 bits. */
     {
         int64_t a = (int64_t)xgo_umul_wide((uint32_t)pl->l2, cn);
-        int64_t b = xgo_mul_wide((int32_t)pl->l1, dn) + xgo_mul_wide((int32_t)pl->l2, nn);
+        int64_t b = xgo_mul_wide(pl->l1, dn) + xgo_mul_wide(pl->l2, nn);
         uint64_t m = (uint64_t)a | (uint64_t)(b < 0 ? -b : b);
         unsigned kk = xgo_bit_length(m);
         int32_t a30, b30;
@@ -333,11 +333,11 @@ static int64_t dist2_um(const xgo_vec3_t *a, int32_t x, int32_t y, int32_t z)
 static void planar_init(planar_t *pl, const xgo_profile_t *p)
 {
     pl->p = p;
-    pl->l1 = (int64_t)p->thigh_um * Q4_ONE;
-    pl->l2 = (int64_t)p->shank_um * Q4_ONE;
+    pl->l1 = p->thigh_um * Q4_ONE;
+    pl->l2 = p->shank_um * Q4_ONE;
     pl->knee_off = xgo_mdeg_to_bam(p->knee_offset_mdeg);
-    pl->sum_sq = mul_cold((int32_t)pl->l1, (int32_t)pl->l1) + mul_cold((int32_t)pl->l2, (int32_t)pl->l2);
-    pl->two_l1l2 = 2 * mul_cold((int32_t)pl->l1, (int32_t)pl->l2);
+    pl->sum_sq = mul_cold(pl->l1, pl->l1) + mul_cold(pl->l2, pl->l2);
+    pl->two_l1l2 = 2 * mul_cold(pl->l1, pl->l2);
     pl->d_shift = xgo_bit_length((uint64_t)pl->two_l1l2);
     pl->d_shift = pl->d_shift > 30u ? pl->d_shift - 30u : 0u;
     pl->arcs_ready = 0;
@@ -382,6 +382,12 @@ int xgo_leg_ik(const xgo_profile_t *p, xgo_leg_t leg, const xgo_vec3_t *foot_um,
      * (the normal one), or above it. Take the first that reaches the target
      * within every limit; if neither does, the one landing nearer. */
     solve_branch(&pl, x * Q4_ONE, wp, z, h_abs, 1, &below);
+    if (!below.projected && !inside_axis_cylinder) { /* within every limit already */
+        q_mdeg[XGO_JOINT_KNEE] = below.q[XGO_JOINT_KNEE];
+        q_mdeg[XGO_JOINT_HIP] = below.q[XGO_JOINT_HIP];
+        q_mdeg[XGO_JOINT_ABAD] = below.q[XGO_JOINT_ABAD];
+        return XGO_IK_REACHED;
+    }
     if (below.projected && h_abs > 0) {
         solve_branch(&pl, x * Q4_ONE, wp, z, h_abs, -1, &above);
         if (!above.projected) {
@@ -482,6 +488,12 @@ static int32_t dot3_q18(int32_t q0, int32_t q1, int32_t q2, int32_t v0, int32_t 
 
 #define NEAR_LIMIT_UM ((1 << 22) - 1)
 
+static int near3_64(int64_t a, int64_t b, int64_t c)
+{
+    return a <= NEAR_LIMIT_UM && a >= -NEAR_LIMIT_UM && b <= NEAR_LIMIT_UM && b >= -NEAR_LIMIT_UM &&
+           c <= NEAR_LIMIT_UM && c >= -NEAR_LIMIT_UM;
+}
+
 static int near3(int32_t a, int32_t b, int32_t c)
 {
     return a <= NEAR_LIMIT_UM && a >= -NEAR_LIMIT_UM && b <= NEAR_LIMIT_UM && b >= -NEAR_LIMIT_UM &&
@@ -512,22 +524,23 @@ void xgo_body_ik_rotated(const xgo_profile_t *p, const xgo_body_pose_t *pose,
     int leg;
     rot_q18(rot, q);
     for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
-        /* foot relative to the body centre, in machine axes, saturated to
-         * int32, then into body axes (R^T v) and the leg frame (origin at
-         * the thigh joint, z down) */
-        const int32_t vx = sat_i32((int64_t)feet_machine_um[leg].x - pose->x_um);
-        const int32_t vy = sat_i32((int64_t)feet_machine_um[leg].y - pose->y_um);
-        const int32_t vz = sat_i32((int64_t)feet_machine_um[leg].z - pose->z_um);
+        /* foot relative to the body centre, in machine axes, then into body
+         * axes (R^T v) and the leg frame (origin at the thigh joint, z down) */
+        const int64_t vx = (int64_t)feet_machine_um[leg].x - pose->x_um;
+        const int64_t vy = (int64_t)feet_machine_um[leg].y - pose->y_um;
+        const int64_t vz = (int64_t)feet_machine_um[leg].z - pose->z_um;
         int32_t ox, oy;
         leg_origin(p, leg, &ox, &oy);
-        if (near3(vx, vy, vz)) { /* every value below 2^24: no saturation */
-            feet_leg_um[leg].x = dot3_q18(q[0], q[3], q[6], vx, vy, vz) - ox;
-            feet_leg_um[leg].y = dot3_q18(q[1], q[4], q[7], vx, vy, vz) - oy;
-            feet_leg_um[leg].z = -dot3_q18(q[2], q[5], q[8], vx, vy, vz);
-        } else {
-            feet_leg_um[leg].x = sat_i32(dot3_q30_far(rot[0], rot[3], rot[6], vx, vy, vz) - ox);
-            feet_leg_um[leg].y = sat_i32(dot3_q30_far(rot[1], rot[4], rot[7], vx, vy, vz) - oy);
-            feet_leg_um[leg].z = sat_i32(-dot3_q30_far(rot[2], rot[5], rot[8], vx, vy, vz));
+        if (near3_64(vx, vy, vz)) { /* every value below 2^24: no saturation */
+            const int32_t x = (int32_t)vx, y = (int32_t)vy, z = (int32_t)vz;
+            feet_leg_um[leg].x = dot3_q18(q[0], q[3], q[6], x, y, z) - ox;
+            feet_leg_um[leg].y = dot3_q18(q[1], q[4], q[7], x, y, z) - oy;
+            feet_leg_um[leg].z = -dot3_q18(q[2], q[5], q[8], x, y, z);
+        } else { /* saturated to int32 so the products stay within 2^61 */
+            const int32_t x = sat_i32(vx), y = sat_i32(vy), z = sat_i32(vz);
+            feet_leg_um[leg].x = sat_i32(dot3_q30_far(rot[0], rot[3], rot[6], x, y, z) - ox);
+            feet_leg_um[leg].y = sat_i32(dot3_q30_far(rot[1], rot[4], rot[7], x, y, z) - oy);
+            feet_leg_um[leg].z = sat_i32(-dot3_q30_far(rot[2], rot[5], rot[8], x, y, z));
         }
     }
 }
