@@ -209,6 +209,8 @@ typedef struct xgo_inertial_s {
     int32_t att_mdeg[3];     /* last tick's roll, pitch, yaw */
     int32_t accel_q8[3];     /* filter states, LSB * 256 */
     int32_t gyro_q8[3];
+    int32_t trig_mdeg[2];    /* the roll and pitch whose sin, cos (Q30) trig_q30 holds */
+    int32_t trig_q30[2][2];
     uint8_t history;         /* ticks seen, up to 2 */
 #endif
     int16_t accel[3];        /* outputs, LSB */

@@ -88,6 +88,8 @@ void xgo_inertial_init(xgo_inertial_t *s)
     memset(s, 0, sizeof *s);
     s->accel_q8[2] = XGO_ACCEL_LSB_PER_G * 256;
     s->accel[2] = XGO_ACCEL_LSB_PER_G;
+    xgo_sincos(xgo_mdeg_to_bam(0), &s->trig_q30[0][0], &s->trig_q30[0][1]);
+    xgo_sincos(xgo_mdeg_to_bam(0), &s->trig_q30[1][0], &s->trig_q30[1][1]);
 }
 
 /* sin and cos of the roll and pitch, shared by the accelerometer and the
@@ -96,10 +98,22 @@ typedef struct attitude_trig_s {
     xgo_q30_t sr, cr, sp, cp;
 } attitude_trig_t;
 
-static void attitude_trig(const int32_t att_mdeg[3], attitude_trig_t *t)
+/* Each worked out again only when its angle changed: a body held at a
+ * roll or a pitch (standing, walking without a periodic motion on that
+ * axis) spares its sincos. */
+static void attitude_trig(xgo_inertial_t *s, const int32_t att_mdeg[3], attitude_trig_t *t)
 {
-    xgo_sincos(xgo_mdeg_to_bam(att_mdeg[0]), &t->sr, &t->cr);
-    xgo_sincos(xgo_mdeg_to_bam(att_mdeg[1]), &t->sp, &t->cp);
+    unsigned axis;
+    for (axis = 0; axis < 2; axis++) {
+        if (s->trig_mdeg[axis] != att_mdeg[axis]) {
+            s->trig_mdeg[axis] = att_mdeg[axis];
+            xgo_sincos(xgo_mdeg_to_bam(att_mdeg[axis]), &s->trig_q30[axis][0], &s->trig_q30[axis][1]);
+        }
+    }
+    t->sr = s->trig_q30[0][0];
+    t->cr = s->trig_q30[0][1];
+    t->sp = s->trig_q30[1][0];
+    t->cp = s->trig_q30[1][1];
 }
 
 /* Specific force in the body frame, LSB * 256: the world acceleration
@@ -161,7 +175,7 @@ void xgo_inertial_tick_sc(xgo_inertial_t *s, const int64_t body_q8[3], const xgo
         s->pos_q8[0][i] = body_q8[i];
         s->att_mdeg[i] = att_mdeg[i];
     }
-    attitude_trig(att_mdeg, &trig);
+    attitude_trig(s, att_mdeg, &trig);
     specific_force(a_q8, heading_sc, &trig, f);
     body_rates(d, &trig, w);
     for (i = 0; i < 3; i++) {

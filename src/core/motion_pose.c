@@ -26,9 +26,19 @@ static int32_t abs32(int32_t v)
     return v < 0 ? -v : v;
 }
 
+/* ms * XGO_TICK_HZ / 1000: when the tick divides a second into whole ms
+ * (500 Hz: 2 ms), the same as ms / (1000 / XGO_TICK_HZ), a shift or a
+ * constant division where the general form is a library division on an
+ * M0 (every tick with a periodic motion). */
+#if 1000u % XGO_TICK_HZ == 0u
+#define MS_TO_TICKS(ms) ((ms) / (1000u / XGO_TICK_HZ))
+#else
+#define MS_TO_TICKS(ms) ((ms) * XGO_TICK_HZ / 1000u)
+#endif
+
 static void advance_periodic(xgo_motion_t *m, unsigned axis, uint8_t period_byte)
 {
-    const uint32_t ticks = (uint32_t)xgo_period_byte_to_ms(period_byte) * XGO_TICK_HZ / 1000u;
+    const uint32_t ticks = MS_TO_TICKS((uint32_t)xgo_period_byte_to_ms(period_byte));
     const uint32_t t = ticks < 2u ? 2u : ticks; /* 750..4000 ticks: never below 2 */
     /* One turn of phase per period: floor(2^32 / t) per tick, in 32 bits:
      * (2^32 - 1) / t, plus one when t divides 2^32 (a power of two). */
