@@ -12,8 +12,10 @@
 #     (-fstack-usage: the .su files next to the image's objects, which the
 #     firmware build writes) summed along the deepest call path from
 #     Reset_Handler, plus the deepest interrupt handler (*_irq; the fault
-#     handlers stop the firmware) and the 32-byte exception frame (the
-#     ports give every interrupt the same priority: none nests). An indirect call (blx/bx
+#     handlers stop the firmware) and the exception frame, 36 bytes: eight
+#     words plus one of padding when the stack pointer is not 8-byte aligned
+#     (always realigned on ARMv6-M, with CCR.STKALIGN on ARMv7-M). The ports
+#     give every interrupt the same priority: none nests. An indirect call (blx/bx
 #     through a register) may reach any function whose address is in a
 #     literal pool; recursion is cut at the second visit; functions without
 #     a .su entry (libgcc, assembly) count 0 bytes (libgcc's helpers the
@@ -116,6 +118,7 @@ stack_bound() {
 }
 
 status=0
+frame=36 # the exception frame (see the top)
 for elf in "$@"; do
   echo "== $elf"
   read -r text data bss _ < <(arm-none-eabi-size "$elf" | tail -n 1)
@@ -126,11 +129,11 @@ for elf in "$@"; do
     $((data + bss)) "$data" "$bss" "${device:-?}"
   if find "$(dirname "$elf")" -name '*.su' | grep -q .; then
     IFS=$'\t' read -r main mainp irq irqp < <(stack_bound "$elf")
-    printf '  stack bound %d bytes: main loop %d + interrupt %d + exception frame 32 (static, -fstack-usage)\n' \
-      $((main + irq + 32)) "$main" "$irq"
+    printf '  stack bound %d bytes: main loop %d + interrupt %d + exception frame %d (static, -fstack-usage)\n' \
+      $((main + irq + frame)) "$main" "$irq" "$frame"
     echo "    deepest: $mainp"
     echo "    interrupt: $irqp"
-    [ -n "$device" ] && printf '  device object + stack bound: %d bytes\n' $((device + main + irq + 32))
+    [ -n "$device" ] && printf '  device object + stack bound: %d bytes\n' $((device + main + irq + frame))
   else
     echo "  stack bound: no .su files next to the image (build with -fstack-usage)"
   fi
