@@ -226,14 +226,12 @@ static void touchdown_q8(const xgo_gait_t *g, const gait_tick_t *x, int leg, int
 {
     int32_t f[2];
     int32_t wf[2];
-    /* tau^2 / 2; tau < 2^16 (pick_cadence), so tau^2 / 2^17 < 2^15 */
-    const uint32_t tau2 = (uint32_t)mul_q_u16((int32_t)x->tau_q16, x->tau_q16, 17u);
     int c;
     gait_foot_velocity(x->vel, x->w_q24, g->stance_um[leg][0], g->stance_um[leg][1], f);
     wf[0] = -mul_q(x->w_q24, f[1], 24u);
     wf[1] = mul_q(x->w_q24, f[0], 24u);
     for (c = 0; c < 2; ++c) {
-        td[c] = (g->stance_um[leg][c] + mul_q_u16(f[c], x->tau_q16, 16u) + mul_q_u16(wf[c], tau2, 16u)) * 256;
+        td[c] = (g->stance_um[leg][c] + mul_q_u16(f[c], x->tau_q16, 16u) + mul_q_u16(wf[c], x->tau2_q16, 16u)) * 256;
     }
 }
 
@@ -678,32 +676,51 @@ static void land_point(xgo_gait_t *g, int leg, int32_t u, int32_t td[2])
  *   h(w) = w^3 (10 - 15w + 6w^2)         0 -> 1
  *   a(w) = w + w^3 (-6 + 8w - 3w^2)      start tangent
  *   b(w) = w^3 (-4 + 7w - 3w^2)          end tangent */
-static void swing_step(xgo_gait_t *g, gait_tick_t *x, int leg)
+static void swing_weights(const gait_table_t *t, uint32_t theta, gait_swing_weights_t *wt)
 {
     const int32_t one = 1 << 26;
-    const int32_t dw = x->t->dwell_q26;
-    int32_t td[2], f0[2], f1[2];
-    uint32_t theta = g->phase - x->t->lift[leg];
-    uint32_t psi = (uint32_t)(xgo_umul_wide(theta, x->t->inv_swing_q16) >> 16);
+    const int32_t dw = t->dwell_q26;
+    const uint32_t psi = (uint32_t)(xgo_umul_wide(theta, t->inv_swing_q16) >> 16);
     const int32_t u = (int32_t)(psi >> 6);
-    const int32_t w = dw == 0 ? u : clamp32(mul_q(u - dw, x->t->dwell_gain_q26, 26u), 0, one);
+    const int32_t w = dw == 0 ? u : clamp32(mul_q(u - dw, t->dwell_gain_q26, 26u), 0, one);
     const int32_t w2 = mul_q(w, w, 26u), w3 = mul_q(w2, w, 26u);
     const int32_t h = mul_q(w3, 10 * one - 15 * w + 6 * w2, 26u);
     const int32_t a = w + mul_q(w3, -6 * one + 8 * w - 3 * w2, 26u);
     const int32_t b = mul_q(w3, -4 * one + 7 * w - 3 * w2, 26u);
-    int32_t ca = a, cb = b;
     xgo_q30_t s, co;
-    int c;
+    wt->theta = theta;
+    wt->u = u;
+    wt->h = h;
+    wt->ca = a;
+    wt->cb = b;
     if (dw != 0) {
         /* p = p_lift + D h + m0 A + m1 B (D = p_land - p_lift); with the
          * dwells A = (1 - 2 delta) a - delta h + min(psi, delta) and
          * B = (1 - 2 delta) b - delta h + max(psi - 1 + delta, 0) */
         const int32_t dh = mul_q(h, dw, 26u);
-        ca = a - mul_q(a, 2 * dw, 26u) - dh + (u < dw ? u : dw);
-        cb = b - mul_q(b, 2 * dw, 26u) - dh + (u > one - dw ? u - (one - dw) : 0);
+        wt->ca = a - mul_q(a, 2 * dw, 26u) - dh + (u < dw ? u : dw);
+        wt->cb = b - mul_q(b, 2 * dw, 26u) - dh + (u > one - dw ? u - (one - dw) : 0);
+    }
+    xgo_sincos(psi >> 1, &s, &co); /* angle pi * psi */
+    wt->s2 = mul_q(s, s, 30u);
+}
+
+/* One swing foot's step on that curve. The weights depend on the phase
+ * since lift-off alone, so a leg lifting with one already moved this tick
+ * (the other foot of a trot's pair) takes them over: same numbers, one
+ * xgo_sincos and seven products fewer. */
+static void swing_step(xgo_gait_t *g, gait_tick_t *x, int leg)
+{
+    const uint32_t theta = g->phase - x->t->lift[leg];
+    const gait_swing_weights_t *wt = &x->weights;
+    int32_t td[2], f0[2], f1[2];
+    int c;
+    if (!x->have_weights || wt->theta != theta) {
+        swing_weights(x->t, theta, &x->weights);
+        x->have_weights = 1;
     }
     touchdown_q8(g, x, leg, td);
-    land_point(g, leg, u, td);
+    land_point(g, leg, wt->u, td);
     gait_foot_velocity(x->vel, x->w_q24, g->lift_q8[leg][0] >> 8, g->lift_q8[leg][1] >> 8, f0);
     gait_foot_velocity(x->vel, x->w_q24, td[0] >> 8, td[1] >> 8, f1);
     for (c = 0; c < 2; ++c) {
@@ -711,12 +728,11 @@ static void swing_step(xgo_gait_t *g, gait_tick_t *x, int leg)
          * (T_swing < 2^16, move_feet) */
         const int32_t m0 = -mul_q_u16(f0[c], x->swing_q16, 8u);
         const int32_t m1 = -mul_q_u16(f1[c], x->swing_q16, 8u);
-        g->pos_q8[leg][c] = g->lift_q8[leg][c] + mul_q(td[c] - g->lift_q8[leg][c], h, 26u) +
-                            mul_q(m0, ca, 26u) + mul_q(m1, cb, 26u);
+        g->pos_q8[leg][c] = g->lift_q8[leg][c] + mul_q(td[c] - g->lift_q8[leg][c], wt->h, 26u) +
+                            mul_q(m0, wt->ca, 26u) + mul_q(m1, wt->cb, 26u);
     }
-    xgo_sincos(psi >> 1, &s, &co); /* angle pi * psi */
     /* the height is at most XGO_GAIT_MAX_HEIGHT_UM < 2^16 (lift_feet) */
-    x->z_um[leg] = mul_q_u16(mul_q(s, s, 30u), (uint32_t)g->swing_height_um[leg], 30u);
+    x->z_um[leg] = mul_q_u16(wt->s2, (uint32_t)g->swing_height_um[leg], 30u);
 }
 
 static void move_feet(xgo_gait_t *g, gait_tick_t *x)
@@ -727,6 +743,9 @@ static void move_feet(xgo_gait_t *g, gait_tick_t *x)
     /* < 2^16 (mul_q_u16): the rate is at least rate_fit (pick_cadence), so
      * the swing lasts at most KSWING(1, 2) / 27962 = 39321 */
     XGO_ASSERT(x->swing_q16 < 65536u);
+    /* tau < 2^16 (pick_cadence), so tau^2 / 2^17 < 2^15 */
+    x->tau2_q16 = (uint32_t)mul_q_u16((int32_t)x->tau_q16, x->tau_q16, 17u);
+    x->have_weights = 0;
     for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
         x->z_um[leg] = 0;
     }

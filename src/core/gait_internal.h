@@ -37,6 +37,16 @@ typedef struct gait_table_s {
     int32_t dwell_gain_q26; /* 1 / (1 - 2 delta), Q26 */
 } gait_table_t;
 
+/* The swing curve's weights at one point of the swing (swing_weights in
+ * gait.c): legs that lift together, a trot's diagonal pairs, share them. */
+typedef struct gait_swing_weights_s {
+    uint32_t theta;   /* phase since lift-off they are for */
+    int32_t u;        /* swing progress psi, Q26 */
+    int32_t h;        /* share of the way from lift-off to landing point, Q26 */
+    int32_t ca, cb;   /* weights of the two end tangents, Q26 */
+    int32_t s2;       /* sin^2(pi psi): the share of the step height, Q30 */
+} gait_swing_weights_t;
+
 /* One tick's working state, filled stage by stage (xgo_gait_tick). */
 typedef struct gait_tick_s {
     /* the command, limited (limit stage) */
@@ -54,11 +64,14 @@ typedef struct gait_tick_s {
     /* the cadence (cadence stage) */
     uint32_t tau_q16;    /* half the stance time at the fitted cadence, s Q16 */
     uint32_t swing_q16;  /* the swing's duration at this tick's rate, s Q16 */
+    uint32_t tau2_q16;   /* tau^2 / 2, s^2 Q16 (move_feet) */
     uint32_t rate;       /* phase advance of this tick */
     int32_t vf[XGO_LEG_COUNT][2]; /* ground velocity of each planted foot */
     /* events (phase stage) and trajectories */
     uint8_t moved[XGO_LEG_COUNT]; /* position already set this tick (touchdown) */
     int32_t z_um[XGO_LEG_COUNT];  /* swing heights this tick */
+    int have_weights;             /* weights holds a swing leg's this tick */
+    gait_swing_weights_t weights;
 } gait_tick_t;
 
 /* (a * b) / 2^q rounded, 1 <= q <= 31: xgo_mul_q without the saturation
