@@ -214,15 +214,34 @@ int32_t xgo_signed_byte_to_value(uint8_t b, int32_t limit)
 
 /* ------------------------------------------------------------ attitude */
 
+/* n / 180000 for n <= 180000 * 128 + 90000. Cores without a divider (three
+ * attitude bytes a tick): the estimate (n >> 7) * 11931 / 2^24 (product <
+ * 2^32) is within one of the quotient, one compare puts it right (checked
+ * for every n in range). */
+static uint32_t div180000(uint32_t n)
+{
+    uint32_t q;
+    if (!XGO_CORE_NARROW_CPU) {
+        return n / 180000u;
+    }
+    q = ((n >> 7) * 11931u) >> 24;
+    if (q * 180000u > n) {
+        q--;
+    } else if ((q + 1u) * 180000u <= n) {
+        q++;
+    }
+    return q;
+}
+
 uint8_t xgo_angle_to_byte(int32_t mdeg)
 {
     /* 1 LSB = 180/128 deg = 1406.25 mdeg; round half away from zero.
      * +-180 degrees already give 256 and 0 (clamped below), so clamping the
      * angle there first changes nothing and keeps mdeg * 128 within 2^25:
-     * 32-bit arithmetic. */
+     * 32-bit arithmetic. The quotient truncates toward zero, as C's. */
     int32_t m = mdeg > 180000 ? 180000 : (mdeg < -180000 ? -180000 : mdeg);
-    int32_t scaled = m * 128;
-    int32_t q = (scaled >= 0 ? scaled + 90000 : scaled - 90000) / 180000;
+    int32_t q = m >= 0 ? (int32_t)div180000((uint32_t)m * 128u + 90000u)
+                       : -(int32_t)div180000((uint32_t)-m * 128u + 90000u);
     q += 128;
     if (q < 0) {
         q = 0;

@@ -24,9 +24,12 @@ static void to_array(const xgo_body_pose_t *p, int32_t v[CHANNELS])
     v[5] = p->yaw_mdeg;
 }
 
+/* (v + 128) >> 8 without the 64-bit sum (a library shift on an M0, six
+ * times a tick): floor((v + 128) / 256) = floor(v / 256) + 1 exactly when
+ * v's low byte is 128 or more. */
 static int32_t round_q8(int32_t v)
 {
-    return (int32_t)(((int64_t)v + Q8 / 2) >> 8);
+    return (v >> 8) + ((v & (Q8 - 1)) >= Q8 / 2 ? 1 : 0);
 }
 
 void xgo_follow_pose(const xgo_follow_t *f, xgo_body_pose_t *out)

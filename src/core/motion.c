@@ -501,7 +501,8 @@ static int32_t servo_mode_step(const xgo_regs_t *r)
  * of the lowest are. */
 static void measure_feet(xgo_motion_t *m, int contact_known)
 {
-    xgo_vec3_t machine[XGO_LEG_COUNT];
+    xgo_vec3_t machine_fk[XGO_LEG_COUNT];
+    const xgo_vec3_t *machine = machine_fk;
     int32_t low = INT32_MAX;
     unsigned leg;
     /* The joints where this tick's IK put them and every foot reachable:
@@ -510,13 +511,16 @@ static void measure_feet(xgo_motion_t *m, int contact_known)
     m->feet_as_solved = (uint8_t)(contact_known && m->ik_cache.valid && m->ik_cache.projected == 0 &&
                                   memcmp(m->servos.angle_mdeg, m->ik_cache.q_mdeg,
                                          sizeof m->ik_cache.q_mdeg) == 0);
+    if (!XGO_WITH_ODOMETRY && contact_known) {
+        return; /* the contacts are known and no odometry takes the feet */
+    }
     if (m->feet_as_solved) {
-        memcpy(machine, m->ik_cache.feet, sizeof machine);
+        machine = m->ik_cache.feet;
     } else {
         xgo_vec3_t body[XGO_LEG_COUNT];
         xgo_q30_t rot[XGO_ROT_COUNT];
         feet_of_joints(m, body);
-        xgo_body_to_machine_rotated(&m->pose, pose_rotation(m, rot), body, machine);
+        xgo_body_to_machine_rotated(&m->pose, pose_rotation(m, rot), body, machine_fk);
     }
     for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
         low = machine[leg].z < low ? machine[leg].z : low;
