@@ -97,19 +97,19 @@ static void body_pose_from_registers(xgo_motion_t *m, const xgo_regs_t *r, xgo_b
     static const uint8_t period_reg[PERIODIC_AXES] = {XGO_REG_PERIOD_ROLL, XGO_REG_PERIOD_PITCH,
                                                       XGO_REG_PERIOD_YAW, XGO_REG_PERIOD_X,
                                                       XGO_REG_PERIOD_Y, XGO_REG_PERIOD_Z};
-    int32_t v[PERIODIC_AXES], mid[PERIODIC_AXES], amp[PERIODIC_AXES] = {0, 0, 0, 0, 0, 0};
+    int32_t v[PERIODIC_AXES], mid[PERIODIC_AXES], amp[PERIODIC_AXES];
     unsigned axis;
 
     decode_registers(m, r);
-    memcpy(v, m->decoded.body, sizeof v);
-    memcpy(mid, v, sizeof mid);
-
     /* A periodic motion replaces the static value on its axis: a sinusoid
      * of half the axis' range around its middle (the spec's "half of the
-     * position limit"), starting at the middle. */
+     * position limit"), starting at the middle. (Filled axis by axis: no
+     * memcpy/memset calls, every tick.) */
     for (axis = 0; axis < PERIODIC_AXES; axis++) {
         const uint8_t b = xgo_regs_get(r, period_reg[axis]);
         const xgo_range_t *range = axis < 3 ? &p->body_mdeg[axis] : &p->body_um[axis - 3];
+        v[axis] = mid[axis] = m->decoded.body[axis];
+        amp[axis] = 0;
         if (b == 0) {
             m->periodic_phase[axis] = 0;
             continue;

@@ -26,13 +26,16 @@ static int64_t round_shift64(int64_t v, unsigned n)
  * that have none (3: multiply by 2^32 / 3, error below 1e-9 relative). */
 static int32_t div_small(int32_t v, unsigned n)
 {
+    /* 2, 4: floor((v + 2^(k-1)) / 2^k) in 32 bits (no 64-bit sum; exact
+     * for every v): floor(v / 2^k) plus one when v's low k bits reach
+     * half. */
     switch (n) {
     case 2:
-        return (int32_t)round_shift64(v, 1);
+        return (v >> 1) + (v & 1);
     case 3:
         return (int32_t)round_shift64(xgo_mul_wide(v, 1431655765), 32);
     default:
-        return (int32_t)round_shift64(v, 2);
+        return (v >> 2) + ((v & 3) >= 2 ? 1 : 0);
     }
 }
 
