@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # tools/mcu/fw_check.sh ELF... - what a firmware image costs and pulls in
 # (docs/mcu.md, "Budgets"). For each image:
-#   - flash (text + data) and RAM (data + bss), and the device object (the
-#     board, its receive ring and the port's bookkeeping: the core's state);
+#   - flash (text + data) and RAM (data + bss), each by origin (core,
+#     libgcc, port; from the link map next to the image), and the device
+#     object (the board, its receive ring and the port's bookkeeping: the
+#     core's state);
 #   - floating point: no soft-float helper (__aeabi_f*/d*, __addsf3, ...)
 #     may be linked at all (the core has no float);
 #   - 64-bit division helpers (__aeabi_ldivmod, __aeabi_uldivmod, __divdi3,
@@ -127,6 +129,12 @@ for elf in "$@"; do
   printf '  flash %d bytes (%s KiB), RAM %d bytes (data %d, bss %d); device object %s bytes\n' \
     $((text + data)) "$(awk -v b=$((text + data)) 'BEGIN { printf "%.1f", b / 1024 }')" \
     $((data + bss)) "$data" "$bss" "${device:-?}"
+  # By origin: the core (its library, or the units link-time optimisation
+  # made of it), libgcc, the port with its start-up code.
+  map=$(dirname "$elf")/xgo-fw.map
+  [ -f "$map" ] && awk -v core='libxgo_core\\.a|ltrans[0-9]*\\.ltrans\\.o' -v other=port \
+    -f "$(dirname "$0")/map_sizes.awk" "$map" | sed 's/^/  /'
+
   if find "$(dirname "$elf")" -name '*.su' | grep -q .; then
     IFS=$'\t' read -r main mainp irq irqp < <(stack_bound "$elf")
     printf '  stack bound %d bytes: main loop %d + interrupt %d + exception frame %d (static, -fstack-usage)\n' \

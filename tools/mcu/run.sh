@@ -109,29 +109,8 @@ gcc "${warn[@]}" -O2 "${nochecks[@]}" "${cfgdefs[@]}" -Iinclude -Isrc/core -Ites
 
 echo "== sizes"
 arm-none-eabi-size "$elf"
-# Flash/RAM by origin, from the link map (input sections kept after --gc-sections).
-awk '
-  /^Linker script and memory map/ { on = 1; next }
-  !on { next }
-  function hex(s,   v, i, c) {
-    v = 0; s = tolower(substr(s, 3))
-    for (i = 1; i <= length(s); i++) { c = index("0123456789abcdef", substr(s, i, 1)) - 1; v = v * 16 + c }
-    return v
-  }
-  function add(sec, size, file,   who, kind) {
-    if (file ~ /obj\/core_/) who = "core"; else if (file ~ /libgcc\.a/) who = "libgcc"; else who = "harness";
-    if (sec ~ /^\.(isr_vector|text|rodata|ARM\.exidx)/) kind = "flash"; else if (sec ~ /^\.data/) kind = "data"; else if (sec ~ /^\.bss/) kind = "bss"; else return;
-    sum[who, kind] += hex(size)
-  }
-  /^ \.[^ ]+$/ { pending = $1; next }
-  pending != "" && $1 ~ /^0x/ && NF == 3 { add(pending, $2, $3); pending = ""; next }
-  /^ \.[^ ]+ +0x/ && NF == 4 { add($1, $3, $4); pending = ""; next }
-  { pending = "" }
-  END {
-    split("core libgcc harness", who, " ")
-    for (i = 1; i <= 3; i++)
-      printf "  %-8s flash %6d  data %5d  bss %5d bytes\n", who[i], sum[who[i], "flash"] + sum[who[i], "data"], sum[who[i], "data"], sum[who[i], "bss"]
-  }' "$out/mcu_selftest.map"
+# Flash/RAM by origin, from the link map.
+awk -v core='obj/core_' -v other=harness -f "$mcu/map_sizes.awk" "$out/mcu_selftest.map"
 
 echo "== run: host"
 "$host" >"$out/host.out"
