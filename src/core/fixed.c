@@ -414,23 +414,37 @@ static const uint32_t atan_tab[33] = {
  * value in Q29 that is * 4 / pi. */
 #define FOUR_PI_FRAC_Q16 17907
 
-/* round(x / 32) for 0 <= x <= 2^30: the nearest node index, from the
- * ratio's top bits (any node near the ratio would do; the nearest keeps the
- * residual within 1/64). ux in [2^24, 2^25], uy <= ux. */
+#if XGO_CORE_NARROW_CPU
+/* round(2^39 / ((k + 16.5) * 2^19)), k = 0..48: 32 / ux at the middle of
+ * each 2^19-wide step of ux in [2^23, 2^25], scaled by 2^24. */
+static const uint16_t node_recip[49] = {
+    63550, 59919, 56680, 53773, 51150, 48771, 46603, 44620, 42799, 41121, 39569, 38130, 36792,
+    35545, 34380, 33288, 32264, 31301, 30394, 29537, 28728, 27962, 27236, 26546, 25891, 25267,
+    24672, 24105, 23564, 23046, 22550, 22075, 21620, 21183, 20764, 20361, 19973, 19600, 19240,
+    18893, 18559, 18236, 17924, 17623, 17332, 17050, 16777, 16513, 16257,
+};
+#endif
+
+/* floor((32 uy + floor(ux / 2)) / ux), the nearest node index, for ux in
+ * [2^23, 2^25] and uy <= ux (any node near the ratio would do; the nearest
+ * keeps the residual within 1/64). Without a divider: an estimate by a
+ * multiply with the reciprocal of ux's 2^19-wide step (off the ratio by
+ * less than 1/33 of it: within one of the quotient), made exact by a
+ * compare each way. */
 static uint32_t nearest_node(uint32_t uy, uint32_t ux)
 {
+    const uint32_t n = (uy << 5) + (ux >> 1); /* < 2^31 */
 #if XGO_CORE_NARROW_CPU
-    uint32_t n = (uy << 5) + (ux >> 1), q = 0;
-    int b;
-    for (b = 5; b >= 0; --b) { /* the quotient is at most 32: 6 bits */
-        if (n >= ux << b) {
-            n -= ux << b;
-            q |= 1u << b;
-        }
+    uint32_t i = ((uy >> 10) * node_recip[(ux >> 19) - 16u] + (1u << 23)) >> 24;
+    const int32_t r = (int32_t)n - (int32_t)(i * ux); /* in [-ux, 2 ux) */
+    if (r < 0) {
+        --i;
+    } else if ((uint32_t)r >= ux) {
+        ++i;
     }
-    return q;
+    return i;
 #else
-    return ((uy << 5) + (ux >> 1)) / ux;
+    return n / ux;
 #endif
 }
 
@@ -507,7 +521,8 @@ static uint32_t residual_q29(uint32_t m, uint32_t e)
 #endif
 }
 
-/* Angle of (ux, uy), ux >= uy > 0, ux in [2^24, 2^25]: BAM 0..2^29. The
+/* Angle of (ux, uy), ux >= uy > 0, ux in [2^23, 2^25] (callers: at least
+ * 2^23.5): BAM 0..2^29. The
  * vector is turned back by the nearest table angle atan(i/32) exactly in
  * integers (multiplied by (32 - i j): x' = 32 x + i y, y' = 32 y - i x),
  * which leaves a residual e = y'/x' within +-1/64; atan e = e - e^3/3 (the
@@ -581,7 +596,7 @@ xgo_bam_t xgo_atan2_len30(int32_t y, int32_t x)
 {
     const uint32_t ux = abs_u32(x), uy = abs_u32(y);
     const int swap = uy > ux;
-    /* the larger is at least 2^28.5: 2^5 down lands in [2^23.5, 2^25] */
+    /* the larger is in [2^28.5, 2^30]: 2^5 down lands in [2^23.5, 2^25] */
     return fold(atan_octant((swap ? uy : ux) >> 5, (swap ? ux : uy) >> 5), swap, x < 0, y < 0);
 }
 

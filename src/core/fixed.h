@@ -213,8 +213,8 @@ xgo_q30_t xgo_cos(xgo_bam_t a);
 xgo_bam_t xgo_atan2(int32_t y, int32_t x);
 
 /* The same for a vector whose length is within [2^29, 2^30] (|x|, |y| <=
- * 2^30): no normalisation, the components cut to 2^-5 (24 bits of the
- * ratio kept). The leg IK's knee angle: sin and cos scaled to 30 bits.
+ * 2^30): no normalisation, the components cut by 2^5 (truncated: 23.5 bits
+ * of the ratio kept). The leg IK's knee angle: sin and cos scaled to 30 bits.
  * Measured max error over that domain: see docs/fixed-point.md. */
 xgo_bam_t xgo_atan2_len30(int32_t y, int32_t x);
 

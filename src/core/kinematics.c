@@ -39,6 +39,18 @@ static int64_t mul_cold(int32_t a, int32_t b)
     return xgo_mul_wide(a, b);
 }
 
+/* v^2: on a Cortex-M0 the unsigned product of |v| (no sign fix-ups),
+ * elsewhere one multiply; the same value. */
+static int64_t square_wide(int32_t v)
+{
+#if XGO_CORE_NARROW_CPU
+    const uint32_t u = v < 0 ? 0u - (uint32_t)v : (uint32_t)v;
+    return (int64_t)xgo_umul_wide(u, u);
+#else
+    return xgo_mul_wide(v, v);
+#endif
+}
+
 /* Local copy of xgo_sat32 so the hot loops can inline it. */
 static int32_t sat_i32(int64_t v)
 {
@@ -225,7 +237,7 @@ static int joint_in(const planar_t *pl, unsigned joint, xgo_bam_t a, int32_t *md
  * had to be projected. */
 static int planar_ik(planar_t *pl, int32_t x, int32_t h, leg_solution_t *s)
 {
-    const int64_t r2 = xgo_mul_wide(x, x) + xgo_mul_wide(h, h);
+    const int64_t r2 = square_wide(x) + square_wide(h);
     const int64_t n = r2 - pl->sum_sq, d = pl->two_l1l2;
     int32_t dn, nn;
     uint32_t cn;
@@ -336,8 +348,8 @@ static void planar_init(planar_t *pl, const xgo_profile_t *p)
     pl->l1 = p->thigh_um * Q4_ONE;
     pl->l2 = p->shank_um * Q4_ONE;
     pl->knee_off = xgo_mdeg_to_bam(p->knee_offset_mdeg);
-    pl->sum_sq = mul_cold(pl->l1, pl->l1) + mul_cold(pl->l2, pl->l2);
-    pl->two_l1l2 = 2 * mul_cold(pl->l1, pl->l2);
+    pl->sum_sq = square_wide(pl->l1) + square_wide(pl->l2);
+    pl->two_l1l2 = 2 * xgo_mul_wide(pl->l1, pl->l2);
     pl->d_shift = xgo_bit_length((uint64_t)pl->two_l1l2);
     pl->d_shift = pl->d_shift > 30u ? pl->d_shift - 30u : 0u;
     pl->arcs_ready = 0;
@@ -374,7 +386,7 @@ int xgo_leg_ik(const xgo_profile_t *p, xgo_leg_t leg, const xgo_vec3_t *foot_um,
      * the axis, h its distance along the leg plane (Pythagoras with d). A
      * target closer to the axis than d is in no leg plane (h = 0 then). */
     wp = (side > 0 ? y : -y) + d; /* |wp| <= 2^21 */
-    h2 = xgo_mul_wide(wp, wp) + xgo_mul_wide(z, z) - xgo_mul_wide(d, d);
+    h2 = square_wide(wp) + square_wide(z) - square_wide(d);
     inside_axis_cylinder = h2 < 0;
     h_abs = h2 > 0 ? (int32_t)sqrt64_round_near((uint64_t)h2 << (2 * Q4_SHIFT)) : 0; /* q4, < 2^26 */
 
