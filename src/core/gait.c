@@ -644,16 +644,24 @@ static void stance_step(xgo_gait_t *g, const gait_tick_t *x, int leg)
  * velocity) during the first half of the swing; over the second half it
  * follows less and less (a share 1 - smoothstep of the gap per tick) and not
  * at all at the end, so a velocity ramp does not drag the foot along the
- * ground as it lands. td (in) becomes the landing point (out). u: swing
- * progress, Q26. */
-static void land_point(xgo_gait_t *g, int leg, int32_t u, int32_t td[2])
+ * ground as it lands. td (in) becomes the landing point (out); follow is
+ * that share (land_follow of the swing progress, Q26; following it all
+ * leaves td as it is). */
+static int32_t land_follow(int32_t u)
 {
     const int32_t half = 1 << 25;
+    int32_t r;
+    if (u < half) {
+        return 1 << 26;
+    }
+    r = 2 * (u - half); /* 0..1 over the second half, Q26 */
+    return (1 << 26) - mul_q(mul_q(r, r, 26u), 3 * (1 << 26) - 2 * r, 26u);
+}
+
+static void land_point(xgo_gait_t *g, int leg, int32_t follow, int32_t td[2])
+{
     int c;
-    if (u >= half) {
-        const int32_t r = 2 * (u - half); /* 0..1 over the second half, Q26 */
-        const int32_t r2 = mul_q(r, r, 26u);
-        const int32_t follow = (1 << 26) - mul_q(r2, 3 * (1 << 26) - 2 * r, 26u);
+    if (follow != 1 << 26) {
         for (c = 0; c < 2; ++c) {
             td[c] = g->land_q8[leg][c] + mul_q(td[c] - g->land_q8[leg][c], follow, 26u);
         }
@@ -689,7 +697,6 @@ static void swing_weights(const gait_table_t *t, uint32_t theta, gait_swing_weig
     const int32_t b = mul_q(w3, -4 * one + 7 * w - 3 * w2, 26u);
     xgo_q30_t s, co;
     wt->theta = theta;
-    wt->u = u;
     wt->h = h;
     wt->ca = a;
     wt->cb = b;
@@ -703,6 +710,7 @@ static void swing_weights(const gait_table_t *t, uint32_t theta, gait_swing_weig
     }
     xgo_sincos(psi >> 1, &s, &co); /* angle pi * psi */
     wt->s2 = mul_q(s, s, 30u);
+    wt->follow = land_follow(u);
 }
 
 /* One swing foot's step on that curve. The weights depend on the phase
@@ -720,7 +728,7 @@ static void swing_step(xgo_gait_t *g, gait_tick_t *x, int leg)
         x->have_weights = 1;
     }
     touchdown_q8(g, x, leg, td);
-    land_point(g, leg, wt->u, td);
+    land_point(g, leg, wt->follow, td);
     gait_foot_velocity(x->vel, x->w_q24, g->lift_q8[leg][0] >> 8, g->lift_q8[leg][1] >> 8, f0);
     gait_foot_velocity(x->vel, x->w_q24, td[0] >> 8, td[1] >> 8, f1);
     for (c = 0; c < 2; ++c) {

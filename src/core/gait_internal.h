@@ -41,10 +41,10 @@ typedef struct gait_table_s {
  * gait.c): legs that lift together, a trot's diagonal pairs, share them. */
 typedef struct gait_swing_weights_s {
     uint32_t theta;   /* phase since lift-off they are for */
-    int32_t u;        /* swing progress psi, Q26 */
     int32_t h;        /* share of the way from lift-off to landing point, Q26 */
     int32_t ca, cb;   /* weights of the two end tangents, Q26 */
     int32_t s2;       /* sin^2(pi psi): the share of the step height, Q30 */
+    int32_t follow;   /* share of the gap the landing point follows, Q26 */
 } gait_swing_weights_t;
 
 /* One tick's working state, filled stage by stage (xgo_gait_tick). */
