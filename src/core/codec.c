@@ -119,18 +119,27 @@ void xgo_joints_to_bytes(const xgo_profile_t *p, const int32_t q_mdeg[XGO_LEG_CO
 
 /* xgo_range_to_byte(r, v), given a guess: the byte b of v is the one with
  * b * span <= 255 (v - lo) < (b + 1) * span, two multiplies to check (every
- * product < 255 * span < 2^31). A joint moves less than one byte's worth
- * per tick, so the last byte is almost always right, which spares the
- * division: eight restoring steps on a core without a divider (Cortex-M0);
- * with one, the check costs more instructions than it saves. */
+ * product < 255 * span < 2^31). A joint moves about one byte's worth per
+ * tick at most, so the last byte or a neighbour is almost always right,
+ * which spares the division: eight restoring steps on a core without a
+ * divider (Cortex-M0); with one, the check costs more instructions than it
+ * saves. Here 0 < num < 255 span, so b is in 0..254: a neighbour found by
+ * the bounds is always a byte. */
 static uint8_t range_to_byte_near(const xgo_range_t *r, int32_t v, uint8_t guess)
 {
     if (XGO_CORE_NARROW_CPU && r->hi > r->lo && v > r->lo && v < r->hi) {
         const uint32_t span = span_of(r);
         const uint32_t num = 255u * ((uint32_t)v - (uint32_t)r->lo);
         const uint32_t low = guess * span;
-        if (num >= low && num - low < span) {
-            return guess;
+        if (num >= low) {
+            if (num - low < span) {
+                return guess;
+            }
+            if (num - low - span < span) {
+                return (uint8_t)(guess + 1u);
+            }
+        } else if (low - num <= span) {
+            return (uint8_t)(guess - 1u);
         }
     }
     return xgo_range_to_byte(r, v);
