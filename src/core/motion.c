@@ -19,6 +19,43 @@
 #define STROKE_MARGIN_STEP_UM 3000
 #define STROKE_MARGIN_MAX_UM 15000
 
+/* a[0..n) == b[0..n): memcmp's answer, inline (the library call costs
+ * about 77 instructions on an M0, several times a tick) */
+static int same_words(const int32_t *a, const int32_t *b, unsigned n)
+{
+    unsigned i;
+    for (i = 0; i < n; i++) {
+        if (a[i] != b[i]) {
+            return 0;
+        }
+    }
+    return 1;
+}
+
+static int same_pose(const xgo_body_pose_t *a, const xgo_body_pose_t *b)
+{
+    return a->roll_mdeg == b->roll_mdeg && a->pitch_mdeg == b->pitch_mdeg &&
+           a->yaw_mdeg == b->yaw_mdeg && a->x_um == b->x_um && a->y_um == b->y_um &&
+           a->z_um == b->z_um;
+}
+
+static int same_feet(const xgo_vec3_t a[XGO_LEG_COUNT], const xgo_vec3_t b[XGO_LEG_COUNT])
+{
+    unsigned leg;
+    for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
+        if (a[leg].x != b[leg].x || a[leg].y != b[leg].y || a[leg].z != b[leg].z) {
+            return 0;
+        }
+    }
+    return 1;
+}
+
+/* The servos are where the last IK put them. */
+static int joints_as_solved(const xgo_motion_t *m)
+{
+    return same_words(m->servos.angle_mdeg, m->ik_cache.q_mdeg, XGO_SERVO_COUNT);
+}
+
 static void reset_gait(xgo_motion_t *m)
 {
     xgo_gait_init(&m->gait, m->stance_um);
@@ -99,8 +136,8 @@ static void action_pose(xgo_motion_t *m, xgo_body_pose_t *pose, xgo_vec3_t feet[
 static void solve_joints(xgo_motion_t *m, const xgo_body_pose_t *pose,
                          const xgo_vec3_t feet[XGO_LEG_COUNT])
 {
-    if (!m->ik_cache.valid || memcmp(&m->ik_cache.pose, pose, sizeof *pose) != 0 ||
-        memcmp(m->ik_cache.feet, feet, sizeof m->ik_cache.feet) != 0) {
+    if (!m->ik_cache.valid || !same_pose(&m->ik_cache.pose, pose) ||
+        !same_feet(m->ik_cache.feet, feet)) {
         m->ik_cache.pose = *pose;
         memcpy(m->ik_cache.feet, feet, sizeof m->ik_cache.feet);
         unsigned leg;
@@ -181,7 +218,7 @@ void xgo_motion_begin_settle(xgo_motion_t *m, uint8_t was_mode)
     uint8_t contact = m->contact;
     if ((was_mode == XGO_MODE_WHOLE_UNIT || was_mode == XGO_MODE_ACTION) && m->ik_cache.valid &&
         m->ik_cache.projected == 0 &&
-        memcmp(m->servos.angle_mdeg, m->ik_cache.q_mdeg, sizeof m->ik_cache.q_mdeg) == 0) {
+        joints_as_solved(m)) {
         memcpy(feet, m->ik_cache.feet, sizeof feet);
     } else {
         int32_t low = INT32_MAX;
@@ -297,11 +334,11 @@ static XGO_MOTION_NOINLINE void update_stroke(xgo_motion_t *m, const xgo_gait_co
     key[3] = c.mark_time_um;
     key[4] = c.type | (c.pace << 8);
     key[5] = m->stroke_key[5];
-    if (memcmp(key, m->stroke_key, 5 * sizeof key[0]) != 0) {
+    if (!same_words(key, m->stroke_key, 5)) {
         m->stroke_margin_um = 0; /* a new command: nothing learnt yet */
     }
     key[5] = m->stroke_margin_um;
-    if (memcmp(key, m->stroke_key, sizeof key) != 0) {
+    if (!same_words(key, m->stroke_key, 6)) {
         memcpy(m->stroke_key, key, sizeof key);
         m->stroke_walks = (uint8_t)xgo_motion_stroke(m, &c, m->stroke);
     }
@@ -509,8 +546,7 @@ static void measure_feet(xgo_motion_t *m, int contact_known)
      * the feet are where they were asked to be (FK of these angles agrees
      * within the IK's 2.4 um), so spare the FK. */
     m->feet_as_solved = (uint8_t)(contact_known && m->ik_cache.valid && m->ik_cache.projected == 0 &&
-                                  memcmp(m->servos.angle_mdeg, m->ik_cache.q_mdeg,
-                                         sizeof m->ik_cache.q_mdeg) == 0);
+                                  joints_as_solved(m));
     if (!XGO_WITH_ODOMETRY && contact_known) {
         return; /* the contacts are known and no odometry takes the feet */
     }
