@@ -9,7 +9,8 @@
 #   parser per byte          callgrind, bench_parser parser (1 MiB mixed stream)
 #   Cortex-M0 / M3 tick      tools/mcu/run.sh (QEMU micro:bit / mps2-an385), the
 #                            full core and the firmware configuration
-#   firmware flash, RAM      tools/mcu/fw_check.sh on both images
+#   firmware flash, RAM      tools/mcu/fw_check.sh on both images (ports/template
+#                            built too: it must link)
 #   stack                    tools/mcu/run.sh (painted RAM around each call)
 #
 # Needs valgrind, arm-none-eabi-gcc, qemu-system-arm; HOST_BUILD (default
@@ -61,11 +62,13 @@ for target in m0 m3; do
 done
 
 echo "== firmware images (arm-none-eabi-gcc -Os): goal flash <= 20 KiB, board + stack <= 3 KiB"
-for port in stm32f1 nrf51; do
+# The template port too: docs/mcu.md promises that it links as it is.
+for port in stm32f1 nrf51 template; do
   dir=build-fw-$port
   [ -f "$dir/CMakeCache.txt" ] ||
     cmake -S . -B "$dir" -DCMAKE_TOOLCHAIN_FILE=cmake/arm-none-eabi.cmake -DXGO_PORT="$port" \
       -DCMAKE_BUILD_TYPE=MinSizeRel >/dev/null
   cmake --build "$dir" -j2 >/dev/null
 done
+echo "  ports/template links: $(arm-none-eabi-size build-fw-template/xgo-fw.elf | awk 'NR == 2 { print $1 + $2 }') bytes of flash"
 bash tools/mcu/fw_check.sh build-fw-stm32f1/xgo-fw.elf build-fw-nrf51/xgo-fw.elf

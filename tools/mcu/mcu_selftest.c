@@ -10,7 +10,8 @@
  *      joints, the IMU bytes, the IMU float32 views, every register and the
  *      diagnostic block read over the wire, plus the internal joint angles;
  *      standing idle; preset action 24 played to its end;
- *   3. a stream of write and read frames fed byte by byte and in one call.
+ *   3. a stream of write and read frames fed byte by byte, then in as few
+ *      calls as the transmit buffer allows (one with the host's).
  *
  * Lines starting with "RESULT" are the program's results: tools/mcu/run.sh
  * requires them to be identical on the host and on the MCU (the core is
