@@ -23,6 +23,15 @@
 #define Q4_ONE 16              /* 2^Q4_SHIFT: scale by multiplying (<< of a negative value is undefined) */
 #define FAR_LIMIT_UM (1 << 20) /* targets beyond ~1 m are scaled down */
 
+/* Kept out of line: a helper's locals must not widen the frame of the
+ * function that goes deepest (leg IK -> branch -> projection; the static
+ * stack bound, docs/mcu.md). */
+#if defined(__GNUC__)
+#define OWN_FRAME __attribute__((noinline))
+#else
+#define OWN_FRAME
+#endif
+
 /* ------------------------------------------------------------ helpers */
 
 static int64_t round_shift(int64_t v, unsigned n)
@@ -342,6 +351,24 @@ static int64_t dist2_um(const xgo_vec3_t *a, int32_t x, int32_t y, int32_t z)
     return dx * dx + dy * dy + dz * dz; /* all within ~2^21: fits */
 }
 
+/* Both branches projected: whether the upper one's foot lands nearer the
+ * target (the target as given: a far one scaled down points the same way). */
+OWN_FRAME static int upper_lands_nearer(const xgo_profile_t *p, int side, const leg_solution_t *below,
+                                        const leg_solution_t *above, const xgo_vec3_t *target)
+{
+    xgo_vec3_t fb, fa;
+    int32_t x = target->x, y = target->y, z = target->z;
+    while (x > FAR_LIMIT_UM || x < -FAR_LIMIT_UM || y > FAR_LIMIT_UM || y < -FAR_LIMIT_UM ||
+           z > FAR_LIMIT_UM || z < -FAR_LIMIT_UM) {
+        x /= 2;
+        y /= 2;
+        z /= 2;
+    }
+    fk_bam(p, side, below->phi, below->g, below->t2, &fb);
+    fk_bam(p, side, above->phi, above->g, above->t2, &fa);
+    return dist2_um(&fa, x, y, z) < dist2_um(&fb, x, y, z);
+}
+
 static void planar_init(planar_t *pl, const xgo_profile_t *p)
 {
     pl->p = p;
@@ -405,10 +432,7 @@ int xgo_leg_ik(const xgo_profile_t *p, xgo_leg_t leg, const xgo_vec3_t *foot_um,
         if (!above.projected) {
             sol = &above;
         } else {
-            xgo_vec3_t fb, fa;
-            fk_bam(p, side, below.phi, below.g, below.t2, &fb);
-            fk_bam(p, side, above.phi, above.g, above.t2, &fa);
-            if (dist2_um(&fa, x, y, z) < dist2_um(&fb, x, y, z)) {
+            if (upper_lands_nearer(p, side, &below, &above, foot_um)) {
                 sol = &above;
             }
         }
