@@ -212,7 +212,7 @@ static uint8_t measured_feet(const xgo_motion_t *m, xgo_vec3_t machine[XGO_LEG_C
  * the joints put somewhere (leg, servo, debug modes; servos still catching
  * up). The lowest foot then stands on the ground: the body is taken as that
  * much lower. The gait waits at the stance until the feet are home. */
-void xgo_motion_begin_settle(xgo_motion_t *m, uint8_t was_mode)
+XGO_MOTION_NOINLINE void xgo_motion_begin_settle(xgo_motion_t *m, uint8_t was_mode)
 {
     xgo_vec3_t feet[XGO_LEG_COUNT];
     uint8_t contact = m->contact;
@@ -352,7 +352,8 @@ static XGO_MOTION_NOINLINE void update_stroke(xgo_motion_t *m, const xgo_gait_co
 /* The pose the registers ask for, turned into one the legs hold with all
  * four feet down (reach.h), for the feet standing or running their stroke.
  * Counts the ticks where the two differ. */
-static void reachable_target(xgo_motion_t *m, const xgo_regs_t *r, const xgo_gait_command_t *cmd)
+static XGO_MOTION_NOINLINE void reachable_target(xgo_motion_t *m, const xgo_regs_t *r,
+                                                 const xgo_gait_command_t *cmd)
 {
     xgo_body_pose_t asked, base, spread;
     xgo_motion_asked_pose(m, r, &asked, &base, &spread);
@@ -536,7 +537,7 @@ static int32_t servo_mode_step(const xgo_regs_t *r)
  * from the planted ones, how far the body moved on the floor. Outside the
  * gait and the actions nobody says which feet are down: those within 1 mm
  * of the lowest are. */
-static void measure_feet(xgo_motion_t *m, int contact_known)
+static XGO_MOTION_NOINLINE void measure_feet(xgo_motion_t *m, int contact_known)
 {
     xgo_vec3_t machine_fk[XGO_LEG_COUNT];
     const xgo_vec3_t *machine = machine_fk;
