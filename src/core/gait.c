@@ -388,7 +388,9 @@ static void ramp_velocity(xgo_gait_t *g, gait_tick_t *x)
             g->reach_y_um[leg] = ry;
         }
     }
-    gait_governed_ramp(g, x->t, prop);
+    if (prop[0] != g->v_ramp[0] || prop[1] != g->v_ramp[1] || prop[2] != g->v_ramp[2]) {
+        gait_governed_ramp(g, x->t, prop); /* a call only while ramping */
+    }
     x->hy = half_stride_y(g->v_ramp[2]);
     x->vel[0] = g->v_ramp[0];
     x->vel[1] = g->v_ramp[1];
