@@ -12,6 +12,7 @@
 
 #include "unity.h"
 #include "xgo/board.h"
+#include "xgo/port.h"
 
 static xgo_board_t board;
 
@@ -241,6 +242,86 @@ static void test_names(void)
     TEST_ASSERT_EQUAL_UINT8(XGO_REG_VX, xgo_reg_find(XGO_REG_VX)->addr);
 }
 
+/* ---- the device layer (xgo/port.h) with the configuration's buffers ---- */
+
+/* A port whose UART takes a few bytes at a time, so replies pile up in the
+ * board's transmit buffer while requests keep arriving. */
+struct xgo_port_s {
+    uint8_t out[1024];
+    size_t n;
+};
+
+static xgo_port_t port;
+static xgo_device_t device;
+
+uint32_t xgo_port_millis(xgo_port_t *p)
+{
+    (void)p;
+    return 0;
+}
+
+size_t xgo_port_tx_room(xgo_port_t *p)
+{
+    return sizeof p->out - p->n < 5u ? sizeof p->out - p->n : 5u;
+}
+
+void xgo_port_tx_write(xgo_port_t *p, const uint8_t *bytes, size_t n)
+{
+    memcpy(&p->out[p->n], bytes, n);
+    p->n += n;
+}
+
+void xgo_port_rx_resume(xgo_port_t *p)
+{
+    (void)p;
+}
+
+int xgo_port_nv_load(xgo_port_t *p, xgo_board_nv_t *nv)
+{
+    (void)p, (void)nv;
+    return 0;
+}
+
+int xgo_port_nv_save(xgo_port_t *p, const xgo_board_nv_t *nv)
+{
+    (void)p, (void)nv;
+    return 1;
+}
+
+void xgo_port_servo_write(xgo_port_t *p, const int32_t raw_mdeg[XGO_SERVO_COUNT], uint16_t limp)
+{
+    (void)p, (void)raw_mdeg, (void)limp;
+}
+
+/* Twelve back-to-back reads of the twelve joints (240 reply bytes, more than
+ * the firmware's 128-byte transmit buffer holds) through the device: every
+ * reply arrives whole and in order, none is dropped. The device feeds input
+ * only while the longest reply the board can queue still fits. */
+static void test_device_back_to_back_reads(void)
+{
+    static const uint8_t req[9] = {0x55, 0x00, 0x09, 0x02, 0x50, 0x0C, 0x98, 0x00, 0xAA};
+    uint32_t counters[XGO_DIAG_COUNT];
+    unsigned i, rounds;
+    memset(&port, 0, sizeof port);
+    xgo_device_init(&device, &port, NULL);
+    for (i = 0; i < 12u * sizeof req; i++) {
+        TEST_ASSERT_TRUE(xgo_device_rx_accepting(&device));
+        (void)xgo_device_rx_put(&device, req[i % sizeof req]);
+    }
+    for (rounds = 0; rounds < 1000 && port.n < 12u * 20u; rounds++) {
+        xgo_device_run(&device);
+    }
+    TEST_ASSERT_EQUAL_UINT(12u * 20u, port.n);
+    for (i = 0; i < 12; i++) {
+        TEST_ASSERT_EQUAL_HEX8(0x55, port.out[20 * i]);
+        TEST_ASSERT_EQUAL_HEX8(0x14, port.out[20 * i + 2]);
+        TEST_ASSERT_EQUAL_HEX8(0xAA, port.out[20 * i + 19]);
+    }
+    xgo_board_counters(xgo_device_board(&device), counters);
+    TEST_ASSERT_EQUAL_UINT32(12, counters[XGO_DIAG_FRAMES_OK]);
+    TEST_ASSERT_EQUAL_UINT32(0, counters[XGO_DIAG_TX_OVERFLOW]);
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -253,5 +334,6 @@ int main(void)
     RUN_TEST(test_frame_length_limit);
     RUN_TEST(test_reply_longer_than_transmit_buffer);
     RUN_TEST(test_names);
+    RUN_TEST(test_device_back_to_back_reads);
     return UNITY_END();
 }
