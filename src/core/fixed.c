@@ -328,6 +328,22 @@ static int32_t div3_small(int32_t v)
     return (int32_t)(((uint32_t)v + 1u) * 21846u >> 16);
 }
 
+/* round(t * v / 2^34), ties up, for a table value 0 <= t <= 2^30 and
+ * |v| < 2^31. On a Cortex-M0 the unsigned product of |v| (no sign
+ * fix-ups; the rounding mirrored for v < 0), elsewhere one multiply: the
+ * same value. */
+static int32_t mul_q34_round(int32_t t, int32_t v)
+{
+#if XGO_CORE_NARROW_CPU
+    const uint32_t u = v < 0 ? 0u - (uint32_t)v : (uint32_t)v;
+    const uint64_t p = xgo_umul_wide((uint32_t)t, u);
+    /* floor((-p + 2^33) / 2^34) = -floor((p + 2^33 - 1) / 2^34) */
+    return v < 0 ? -(int32_t)((p + ((uint64_t)1 << 33) - 1u) >> 34) : (int32_t)((p + ((uint64_t)1 << 33)) >> 34);
+#else
+    return (int32_t)((xgo_mul_wide(t, v) + ((int64_t)1 << 33)) >> 34);
+#endif
+}
+
 /* The nearest table node and the angle-addition formulas:
  *   sin(a + d) = s0 cos d + c0 sin d,  cos(a + d) = c0 cos d - s0 sin d,
  * sin d = d - d^3/6 (next term < 1e-13), 1 - cos d = d^2/2 (next term
@@ -355,8 +371,8 @@ void xgo_sincos(xgo_bam_t a, xgo_q30_t *sin_out, xgo_q30_t *cos_out)
     const int32_t s_h = (int32_t)(((uint32_t)s0 >> 14) * (uint32_t)half_d2 >> 16);
     const int32_t c_h = (int32_t)(((uint32_t)c0 >> 14) * (uint32_t)half_d2 >> 16);
     /* sin d terms: Q30 * Q34 = Q64 -> Q30 */
-    const int32_t c_s = (int32_t)((xgo_mul_wide(c0, sd) + ((int64_t)1 << 33)) >> 34);
-    const int32_t s_s = (int32_t)((xgo_mul_wide(s0, sd) + ((int64_t)1 << 33)) >> 34);
+    const int32_t c_s = mul_q34_round(c0, sd);
+    const int32_t s_s = mul_q34_round(s0, sd);
     const int32_t s = clamp_unit(s0 + c_s - s_h);
     const int32_t c = clamp_unit(c0 - s_s - c_h);
     int32_t so, co;
