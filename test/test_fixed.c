@@ -442,7 +442,46 @@ static void test_sincos_against_libm(void)
     TEST_ASSERT_TRUE(max_cos_err <= 3.5);
 }
 
+
+/* xgo_sqrt64_near against the exact floor: equal below 2^32, within a few
+ * units of it above (the leg IK's two roots; docs/fixed-point.md). */
+static void check_sqrt_near(uint64_t x, uint32_t *worst)
+{
+    const uint32_t r = xgo_isqrt64(x), n = xgo_sqrt64_near(x);
+    const uint32_t e = n > r ? n - r : r - n;
+    if (x <= 0xFFFFFFFFu) {
+        TEST_ASSERT_EQUAL_UINT32(r, n);
+    }
+    if (e > *worst) {
+        *worst = e;
+    }
+}
+
+static void test_sqrt64_near_within_units_of_the_floor(void)
+{
+    uint32_t worst = 0, i;
+    uint64_t s;
+    check_sqrt_near(0, &worst);
+    check_sqrt_near(UINT64_MAX, &worst);
+    check_sqrt_near((uint64_t)1 << 32, &worst);
+    check_sqrt_near(((uint64_t)1 << 32) - 1u, &worst);
+    for (s = 1; s <= 0xFFFFFFFFull; s = s * 3 + 1) {
+        check_sqrt_near(s * s, &worst);
+        check_sqrt_near(s * s - 1, &worst);
+        check_sqrt_near(s * s + 1, &worst);
+    }
+    for (i = 0; i < 1000000; ++i) {
+        check_sqrt_near(rnd64(), &worst);
+        check_sqrt_near(rnd64() >> (rnd32() % 64), &worst);
+    }
+    report("xgo_sqrt64_near vs the exact floor", (double)worst, "units");
+    TEST_ASSERT_TRUE(worst >= 1u); /* it is not the exact root: the test can tell */
+    TEST_ASSERT_TRUE(worst <= 6u);
+}
+
 /* ------------------------------------------------------------ atan2 */
+
+#define BOUND_LEN30 52.0 /* xgo_atan2_len30: measured 44.8 LSB (docs/fixed-point.md) */
 
 static double max_atan_err;
 
@@ -532,6 +571,37 @@ static void test_atan2_64_against_libm(void)
 
 /* ------------------------------------------------------------ asin / acos */
 
+
+/* xgo_atan2_len30: vectors of length 2^29 .. 2^30 in every direction (the
+ * leg IK's knee angle), against libm. */
+static void test_atan2_len30_against_libm(void)
+{
+    double max_err = 0;
+    uint32_t k;
+    static const double lens[] = {536870912.0, 700000000.0, 900000000.0, 1073741823.0};
+    size_t i;
+    for (i = 0; i < sizeof lens / sizeof lens[0]; ++i) {
+        for (k = 0; k < 262144; ++k) {
+            double t = (double)k * (2.0 * M_PI / 262144.0) + 1e-5;
+            int32_t x = (int32_t)(lens[i] * cos(t)), y = (int32_t)(lens[i] * sin(t));
+            double e = atan2_err((double)y, (double)x, xgo_atan2_len30(y, x));
+            max_err = e > max_err ? e : max_err;
+        }
+    }
+    for (k = 0; k < 1000000; ++k) {
+        double t = (double)rnd32() * (2.0 * M_PI / 4294967296.0);
+        double r = 536870912.0 + (double)(rnd32() % 536870912u);
+        int32_t x = (int32_t)(r * cos(t)), y = (int32_t)(r * sin(t));
+        double e = atan2_err((double)y, (double)x, xgo_atan2_len30(y, x));
+        max_err = e > max_err ? e : max_err;
+    }
+    TEST_ASSERT_EQUAL_UINT32(0u, xgo_atan2_len30(0, 1 << 30));
+    TEST_ASSERT_EQUAL_UINT32(XGO_BAM_90, xgo_atan2_len30(1 << 30, 0));
+    TEST_ASSERT_EQUAL_UINT32(XGO_BAM_180, xgo_atan2_len30(0, -(1 << 30)));
+    report("xgo_atan2_len30", max_err, "LSB of BAM");
+    TEST_ASSERT_TRUE(max_err <= BOUND_LEN30);
+}
+
 static void test_asin_acos_against_libm(void)
 {
     double max_as = 0, max_ac = 0;
@@ -586,11 +656,13 @@ int main(void)
     RUN_TEST(test_div_q_and_muldiv);
     RUN_TEST(test_udiv64_cap_is_the_capped_quotient);
     RUN_TEST(test_isqrt_exact);
+    RUN_TEST(test_sqrt64_near_within_units_of_the_floor);
     RUN_TEST(test_q16_sqrt_against_libm);
     RUN_TEST(test_angle_conversions);
     RUN_TEST(test_sincos_against_libm);
     RUN_TEST(test_atan2_against_libm);
     RUN_TEST(test_atan2_64_against_libm);
+    RUN_TEST(test_atan2_len30_against_libm);
     RUN_TEST(test_asin_acos_against_libm);
     return UNITY_END();
 }

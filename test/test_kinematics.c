@@ -24,6 +24,15 @@
 #endif
 #define DEG (M_PI / 180.0)
 
+/* The bounds asserted: what was measured (the INFO lines, docs/fixed-point.md)
+ * plus a small margin. Issue 3's goal is 0.1 degree for the leg IK; the
+ * integer IK's error is its rounding to whole millidegrees (0.0005) plus
+ * the atan2 and square roots' last bits. */
+#define IK_BOUND_DEG 0.0007   /* measured 0.00059 deg */
+#define FK_IK_BOUND_UM 3.0    /* measured 2.45 um */
+#define FK_BOUND_UM 1.0       /* measured 0.87 um */
+#define BODY_BOUND_UM 1.6     /* measured 1.38 um (rotation cut to Q18) */
+
 void setUp(void) {}
 void tearDown(void) {}
 
@@ -281,7 +290,7 @@ static void test_fk_against_reference(void)
         }
     }
     report("FK error vs double reference", max_err, "um");
-    TEST_ASSERT_TRUE(max_err <= 2.0);
+    TEST_ASSERT_TRUE(max_err <= FK_BOUND_UM);
 }
 
 /* ------------------------------------------------------------ IK grids */
@@ -355,8 +364,8 @@ static void test_ik_register_box_grid_all_legs(void)
     TEST_ASSERT_EQUAL_INT32(0, st.projected); /* the whole box is reachable */
     report("IK max joint error vs double reference (register box)", st.max_angle_err_deg, "deg");
     report("max |FK(IK(p)) - p| (register box)", st.max_fk_err_um, "um");
-    TEST_ASSERT_TRUE(st.max_angle_err_deg <= 0.1);
-    TEST_ASSERT_TRUE(st.max_fk_err_um <= 100.0);
+    TEST_ASSERT_TRUE(st.max_angle_err_deg <= IK_BOUND_DEG);
+    TEST_ASSERT_TRUE(st.max_fk_err_um <= FK_IK_BOUND_UM);
 }
 
 /* The whole reachable workspace: a 48^3 grid in joint space (110,592 points
@@ -414,15 +423,15 @@ static void test_ik_joint_space_grid_whole_workspace(void)
     TEST_ASSERT_EQUAL_INT32(0, st.projected);
     report("IK max joint error vs double reference (whole workspace)", st.max_angle_err_deg, "deg");
     report("max |FK(IK(p)) - p| (whole workspace)", st.max_fk_err_um, "um");
-    TEST_ASSERT_TRUE(st.max_angle_err_deg <= 0.1);
-    TEST_ASSERT_TRUE(st.max_fk_err_um <= 100.0);
+    TEST_ASSERT_TRUE(st.max_angle_err_deg <= IK_BOUND_DEG);
+    TEST_ASSERT_TRUE(st.max_fk_err_um <= FK_IK_BOUND_UM);
 
     memset(&st, 0, sizeof st);
     joint_space_grid(xgo_profile_lite(), 20, &st);
     TEST_ASSERT_EQUAL_INT32(0, st.projected);
     report("IK max joint error (lite, 20^3 grid)", st.max_angle_err_deg, "deg");
-    TEST_ASSERT_TRUE(st.max_angle_err_deg <= 0.1);
-    TEST_ASSERT_TRUE(st.max_fk_err_um <= 100.0);
+    TEST_ASSERT_TRUE(st.max_angle_err_deg <= IK_BOUND_DEG);
+    TEST_ASSERT_TRUE(st.max_fk_err_um <= FK_IK_BOUND_UM);
 }
 
 /* ------------------------------------------------------------ projection */
@@ -708,7 +717,7 @@ static void test_body_ik_against_reference_over_register_ranges(void)
     snprintf(msg, sizeof msg, "body IK: %ld poses x 4 legs (mini + lite)", poses);
     TEST_MESSAGE(msg);
     report("body IK max error vs double reference", max_body_err_um, "um");
-    TEST_ASSERT_TRUE(max_body_err_um <= 200.0);
+    TEST_ASSERT_TRUE(max_body_err_um <= BODY_BOUND_UM);
 }
 
 static void test_body_ik_identities(void)
