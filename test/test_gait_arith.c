@@ -82,6 +82,29 @@ static void test_mul_q_u16_matches_the_wide_product(void)
     TEST_ASSERT_TRUE(checked > 200000u);
 }
 
+/* w x p's products: yaw rates and positions at the edges of the short form's
+ * range, just outside it (the general product) and at random. */
+static void test_mul_w_q24_matches_the_wide_product(void)
+{
+    static const int32_t ws[] = { 0, 1, -1, 0xFFFF, -0xFFFF, 0x10000, -0x10000, (1 << 26) - 1, -(1 << 26) + 1,
+                                  -(1 << 26), 1 << 26, 58600000, -58600000, INT32_MAX, INT32_MIN };
+    static const int32_t ps[] = { 0, 1, -1, 0xFFFF, -0xFFFF, 0x10000, -0x10000, (1 << 20) - 1, -(1 << 20) + 1,
+                                  -(1 << 20), 1 << 20, 75000, -53500, INT32_MAX, INT32_MIN };
+    uint32_t seed = 777u;
+    size_t i, j;
+    int k;
+    for (i = 0; i < sizeof ws / sizeof ws[0]; ++i) {
+        for (j = 0; j < sizeof ps / sizeof ps[0]; ++j) {
+            TEST_ASSERT_EQUAL_INT32(reference_mul_q(ws[i], ps[j], 24u), mul_w_q24(ws[i], ps[j]));
+        }
+    }
+    for (k = 0; k < 200000; ++k) {
+        const int32_t w = (int32_t)lcg(&seed) >> (5 + (k & 3));  /* around |w| < 2^26 */
+        const int32_t p = (int32_t)lcg(&seed) >> (10 + (k & 3)); /* around |p| < 2^20 */
+        TEST_ASSERT_EQUAL_INT32(reference_mul_q(w, p, 24u), mul_w_q24(w, p));
+    }
+}
+
 /* The yaw widening: every yaw rate up to the reference, and beyond it (the
  * share saturates), against the division gait.h states. */
 static void test_yaw_widening_is_the_exact_division(void)
@@ -101,6 +124,7 @@ int main(void)
 {
     UNITY_BEGIN();
     RUN_TEST(test_mul_q_u16_matches_the_wide_product);
+    RUN_TEST(test_mul_w_q24_matches_the_wide_product);
     RUN_TEST(test_yaw_widening_is_the_exact_division);
     return UNITY_END();
 }

@@ -117,8 +117,8 @@ uint32_t xgo_gait_duty_pct(uint8_t type)
 
 void gait_foot_velocity(const int32_t v[2], int32_t w_q24, int32_t x_um, int32_t y_um, int32_t out[2])
 {
-    out[0] = v[0] - mul_q_inline(w_q24, y_um, 24u);
-    out[1] = v[1] + mul_q_inline(w_q24, x_um, 24u);
+    out[0] = v[0] - mul_w_q24(w_q24, y_um);
+    out[1] = v[1] + mul_w_q24(w_q24, x_um);
 }
 
 static int32_t clamp32(int32_t v, int32_t lo, int32_t hi)

@@ -140,6 +140,28 @@ GAIT_ALWAYS_INLINE int32_t mul_q_u16(int32_t a, uint32_t b, unsigned q)
 #endif
 }
 
+/* mul_q(w, p, 24) for a yaw rate w (rad/s Q24) times a position p (um):
+ * the same result, bit for bit. On a Cortex-M0, when |w| < 2^26 (always:
+ * yaw_q24 of a clamped rate, 200 deg/s = 58.6e6) and |p| < 2^20 (a point
+ * within a metre of the body: always, by the clamps), three MULS do:
+ * with w = wh 2^16 + wl and p = ph 2^16 + pl (wl, pl in [0, 2^16)),
+ *   w p = (wh p + wl ph) 2^16 + wl pl,  |wh p| <= 2^30, |wl ph| < 2^20,
+ * so floor((w p + 2^23) / 2^24) = (wh p + wl ph + floor(wl pl / 2^16) + 2^7) >> 8;
+ * anything else takes the general product. test_gait_arith sweeps both. */
+GAIT_ALWAYS_INLINE int32_t mul_w_q24(int32_t w, int32_t p)
+{
+#if XGO_CORE_NARROW_CPU
+    if ((uint32_t)w + (1u << 26) < (1u << 27) && (uint32_t)p + (1u << 20) < (1u << 21)) {
+        const int32_t wh = w >> 16, ph = p >> 16;
+        const uint32_t wl = (uint32_t)w & 0xFFFFu, pl = (uint32_t)p & 0xFFFFu;
+        return (wh * p + (int32_t)wl * ph + (int32_t)((wl * pl) >> 16) + (1 << 7)) >> 8;
+    }
+    return mul_q(w, p, 24u);
+#else
+    return mul_q_inline(w, p, 24u);
+#endif
+}
+
 static inline uint32_t abs_u(int32_t v)
 {
     return v < 0 ? 0u - (uint32_t)v : (uint32_t)v;
