@@ -187,8 +187,18 @@ static inline xgo_bam_t xgo_mdeg_to_bam(int32_t mdeg)
  * negative), rounded to nearest. Max error 0.5 mdeg (exact rounding). */
 static inline int32_t xgo_bam_to_mdeg(xgo_bam_t a)
 {
+#if XGO_CORE_NARROW_CPU
+    /* The same rounded product in 32-bit pieces (a Cortex-M0 has no
+     * widening multiply): 360000 = 5625 * 2^6 and a = ah 2^16 + al, so
+     * (a * 360000 + 2^31) / 2^32 = (ah 5625 + (al 5625 + 2^25) / 2^16) / 2^10,
+     * each division a floor (exact: the nested floors of a floor). */
+    const int32_t s = xgo_bam_signed(a);
+    const int32_t ah = s >> 16, al = s & 0xFFFF;
+    return (ah * 5625 + ((al * 5625 + (1 << 25)) >> 16)) >> 10;
+#else
     const int64_t p = xgo_mul_wide(xgo_bam_signed(a), XGO_MDEG_PER_TURN); /* |p| < 2^50 */
     return (int32_t)((p + ((int64_t)1 << 31)) >> 32);
+#endif
 }
 
 /* An angle in mdeg wrapped into [-180000, 180000); any int32 input. Angles
