@@ -47,9 +47,9 @@
  * Pointers must not be NULL (a caller bug: XGO_ASSERT, src/core/check.h).
  *
  * Portable: C99, integer arithmetic only (fixed.h), no OS calls, no heap,
- * no globals. Cost (x86-64 -O2): ~1,250 instructions per tick walking
- * steadily, ~2,200 while the velocity changes, ~75 standing; one xgo_sincos
- * per swinging leg, about 50 32x32->64 multiplies; 64-bit division only in
+ * no globals. Cost (x86-64 -O2): ~1,320 instructions per tick trotting
+ * steadily, ~2,200 while the velocity changes, ~86 standing; one xgo_sincos
+ * per swing phase, about 80 32x32->64 products; 64-bit division only in
  * rare transients (docs/gait.md).
  */
 #ifndef XGO_GAIT_H
