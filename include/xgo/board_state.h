@@ -178,12 +178,12 @@ typedef struct xgo_imu_s {
 } xgo_imu_t;
 
 /* Leg odometry (src/core/odometry.h); without it (XGO_WITH_ODOMETRY 0,
- * xgo/config.h) only the pose, which stays at the origin. */
+ * xgo/config.h) nothing: the pose stays at the origin. */
 typedef struct xgo_odometry_s {
+#if XGO_WITH_ODOMETRY
     int64_t x_q8;                           /* world position, 1/256 um */
     int64_t y_q8;
     uint32_t yaw;                           /* heading, binary angle (xgo_bam_t) */
-#if XGO_WITH_ODOMETRY
     int32_t yaw_sc[2];                      /* its sine and cosine, Q30 (kept with it:
                                                the tick needs them twice) */
     xgo_vec3_t prev_um[XGO_LEG_COUNT];      /* last tick's feet (machine frame; z unused) */
@@ -192,6 +192,8 @@ typedef struct xgo_odometry_s {
     int32_t last_d_q8[2];                   /* last tick's translation (body frame) */
     int32_t last_dyaw;                      /* last tick's rotation (signed BAM) */
     uint32_t extrapolated_ticks;            /* ticks with < 2 common planted feet */
+#else
+    uint8_t unused; /* C99 has no empty struct */
 #endif
 } xgo_odometry_t;
 

@@ -16,12 +16,12 @@ void xgo_odometry_init(xgo_odometry_t *o)
 #endif
 }
 
+#if XGO_WITH_ODOMETRY /* else the pose stays at the origin (odometry.h) */
 static int64_t round_shift64(int64_t v, unsigned n)
 {
     return (v + ((int64_t)1 << (n - 1))) >> n;
 }
 
-#if XGO_WITH_ODOMETRY /* else the pose stays at the origin (odometry.h) */
 /* v / n for the support sizes 2..4, without a library division on cores
  * that have none (3: multiply by 2^32 / 3, error below 1e-9 relative). */
 static int32_t div_small(int32_t v, unsigned n)
@@ -144,7 +144,14 @@ void xgo_odometry_update(xgo_odometry_t *o, const xgo_vec3_t feet_um[XGO_LEG_COU
 
 void xgo_odometry_pose(const xgo_odometry_t *o, xgo_world_pose_t *out)
 {
+#if XGO_WITH_ODOMETRY
     out->x_um = xgo_sat32(round_shift64(o->x_q8, 8));
     out->y_um = xgo_sat32(round_shift64(o->y_q8, 8));
     out->yaw_mdeg = xgo_bam_to_mdeg(o->yaw);
+#else /* no state kept: the origin (odometry.h) */
+    (void)o;
+    out->x_um = 0;
+    out->y_um = 0;
+    out->yaw_mdeg = 0;
+#endif
 }
