@@ -82,7 +82,8 @@ void xgo_leg_fk(const xgo_profile_t *p, xgo_leg_t leg, const int32_t q_mdeg[XGO_
 void xgo_body_rotation(const xgo_body_pose_t *pose, xgo_q30_t rot[XGO_ROT_COUNT]);
 
 /* Body IK: feet in the machine frame (on the ground or anywhere) and the
- * body pose -> each foot in its leg frame. Coordinates saturate at +-2147 m. */
+ * body pose -> each foot in its leg frame. Coordinates saturate at +-2147 m.
+ * feet_leg_um may be feet_machine_um (each foot is read before written). */
 void xgo_body_ik(const xgo_profile_t *p, const xgo_body_pose_t *pose,
                  const xgo_vec3_t feet_machine_um[XGO_LEG_COUNT],
                  xgo_vec3_t feet_leg_um[XGO_LEG_COUNT]);

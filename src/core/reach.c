@@ -18,18 +18,45 @@ static int same_pose(const xgo_body_pose_t *a, const xgo_body_pose_t *b)
     return memcmp(a, b, sizeof *a) == 0;
 }
 
-/* The feet in `feet` with the body at pose: the legs out of reach, and the
- * sum of their misses (target minus the point the projected solution
- * reaches) and of their sizes (|x| + |y| + |z|). The misses are in the body
- * frame (a leg frame with z up): the search shifts the body by them in the
- * machine frame, off by the attitude's turn (at most 22 degrees) - the
- * descent after the jump takes care of the rest. */
-static unsigned check_feet(const xgo_profile_t *p, const xgo_body_pose_t *pose,
-                           const xgo_vec3_t feet[XGO_LEG_COUNT], xgo_vec3_t *miss_sum, uint32_t *total)
+/* The search sits on the deepest stack path (reach -> leg IK -> branch ->
+ * projection; docs/mcu.md): helpers with locals of their own stay out of
+ * line, so their frames are not on it. */
+#if defined(__GNUC__)
+#define OWN_FRAME __attribute__((noinline))
+#else
+#define OWN_FRAME
+#endif
+
+/* The feet stance + sign * stroke (stroke NULL: the stance) with the body
+ * at pose, in the leg frames (body IK in place). */
+OWN_FRAME static void feet_in_legs(const xgo_profile_t *p, const xgo_body_pose_t *pose,
+                                   const xgo_vec3_t stance[XGO_LEG_COUNT], const xgo_vec3_t *stroke,
+                                   int sign, xgo_vec3_t feet[XGO_LEG_COUNT])
+{
+    unsigned leg;
+    for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
+        feet[leg] = stance[leg];
+        if (stroke != NULL) {
+            feet[leg].x += sign * stroke[leg].x;
+            feet[leg].y += sign * stroke[leg].y;
+        }
+    }
+    xgo_body_ik(p, pose, feet, feet);
+}
+
+/* The feet stance + sign * stroke with the body at pose: the legs out of
+ * reach, and the sum of their misses (target minus the point the projected
+ * solution reaches) and of their sizes (|x| + |y| + |z|). The misses are in
+ * the body frame (a leg frame with z up): the search shifts the body by them
+ * in the machine frame, off by the attitude's turn (at most 22 degrees) -
+ * the descent after the jump takes care of the rest. */
+OWN_FRAME static unsigned check_feet(const xgo_profile_t *p, const xgo_body_pose_t *pose,
+                                     const xgo_vec3_t stance[XGO_LEG_COUNT], const xgo_vec3_t *stroke,
+                                     int sign, xgo_vec3_t *miss_sum, uint32_t *total)
 {
     xgo_vec3_t leg_feet[XGO_LEG_COUNT];
     unsigned mask = 0, leg;
-    xgo_body_ik(p, pose, feet, leg_feet);
+    feet_in_legs(p, pose, stance, stroke, sign, leg_feet);
     for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
         int32_t q[XGO_JOINT_COUNT];
         xgo_vec3_t at;
@@ -64,22 +91,11 @@ static unsigned check(const xgo_profile_t *p, const xgo_body_pose_t *pose,
     xgo_vec3_t sum = {0, 0, 0};
     unsigned mask, n;
     *total = 0;
-    mask = check_feet(p, pose, stance, &sum, total);
+    mask = check_feet(p, pose, stance, NULL, 0, &sum, total);
     n = count4(mask);
     if (stroke != NULL) { /* and both ends: a leg holds its middle and ends, not always between */
-        xgo_vec3_t feet[XGO_LEG_COUNT];
-        unsigned leg, fore, aft;
-        for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
-            feet[leg].x = stance[leg].x + stroke[leg].x;
-            feet[leg].y = stance[leg].y + stroke[leg].y;
-            feet[leg].z = stance[leg].z;
-        }
-        fore = check_feet(p, pose, feet, &sum, total);
-        for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
-            feet[leg].x = stance[leg].x - stroke[leg].x;
-            feet[leg].y = stance[leg].y - stroke[leg].y;
-        }
-        aft = check_feet(p, pose, feet, &sum, total);
+        const unsigned fore = check_feet(p, pose, stance, stroke, 1, &sum, total);
+        const unsigned aft = check_feet(p, pose, stance, stroke, -1, &sum, total);
         mask |= fore | aft;
         n += count4(fore) + count4(aft);
     }
@@ -203,11 +219,11 @@ static int try_shift(xgo_reach_t *s, const xgo_profile_t *p, const xgo_vec3_t st
     miss->x = miss->y = miss->z = 0;
     *total = 0;
     for (i = 0; i < n; i++) {
-        xgo_body_pose_t base, c;
+        xgo_body_pose_t c;
         xgo_vec3_t m;
         uint32_t t;
-        n = corner(s, i, &base);
-        transform(s, shift, &base, &c);
+        n = corner(s, i, &c);
+        transform(s, shift, &c, &c); /* field by field: in place is fine */
         if (check(p, &c, stance, s->walking ? s->stroke : NULL, &m, &t) != 0) {
             miss->x += m.x;
             miss->y += m.y;
