@@ -94,10 +94,11 @@ typedef struct gait_tick_s {
 GAIT_ALWAYS_INLINE int32_t mul_q_inline(int32_t a, int32_t b, unsigned q)
 {
 #if XGO_CORE_NARROW_CPU
+    /* floor((p + 2^(q-1)) / 2^q) = floor(p / 2^q) + bit q-1 of p: no carry
+     * to move between the words */
     const uint64_t p = (uint64_t)xgo_mul_wide(a, b);
-    const uint32_t lo = (uint32_t)p + (1u << (q - 1u));
-    const uint32_t hi = (uint32_t)(p >> 32) + (lo < (uint32_t)p ? 1u : 0u);
-    return (int32_t)((lo >> q) | (hi << (32u - q)));
+    const uint32_t lo = (uint32_t)p, hi = (uint32_t)(p >> 32);
+    return (int32_t)(((lo >> q) | (hi << (32u - q))) + ((lo >> (q - 1u)) & 1u));
 #else
     return (int32_t)(((int64_t)a * b + ((int64_t)1 << (q - 1u))) >> q);
 #endif
