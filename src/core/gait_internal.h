@@ -75,7 +75,7 @@ typedef struct gait_tick_s {
 } gait_tick_t;
 
 /* (a * b) / 2^q rounded, 1 <= q <= 31: xgo_mul_q without the saturation
- * (it is the hot spot: about 90 a trotting tick). Every use has
+ * (it is the hot spot: about 80 a trotting tick). Every use has
  * |a * b| < 2^56 and a result well inside int32 by the clamps on the
  * command (twice the vendor ranges), the stance (+-200 mm) and the reach
  * box. On a Cortex-M0 the product is wide.h's four 16-bit MULS and the
