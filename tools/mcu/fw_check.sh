@@ -135,7 +135,7 @@ for elf in "$@"; do
   [ -f "$map" ] && awk -v core='libxgo_core\\.a|ltrans[0-9]*\\.ltrans\\.o' -v other=port \
     -f "$(dirname "$0")/map_sizes.awk" "$map" | sed 's/^/  /'
 
-  if find "$(dirname "$elf")" -name '*.su' | grep -q .; then
+  if [ -n "$(find "$(dirname "$elf")" -name '*.su' -print -quit)" ]; then # no early-closed pipe under pipefail
     IFS=$'\t' read -r main mainp irq irqp < <(stack_bound "$elf")
     printf '  stack bound %d bytes: main loop %d + interrupt %d + exception frame %d (static, -fstack-usage)\n' \
       $((main + irq + frame)) "$main" "$irq" "$frame"

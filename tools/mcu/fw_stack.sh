@@ -26,5 +26,7 @@ for _ in $(seq 100); do
   sleep 0.05
 done
 [ "$(stat -c %s "$dump")" -ge "$len" ] || { echo "fw_stack.sh: QEMU's monitor did not dump the RAM" >&2; exit 1; }
-untouched=$(od -An -v -tx4 -w4 "$dump" | awk '$1 != "5ac3a55c" { exit } { n++ } END { print n * 4 }')
+# awk reads to the end (no early exit): od must not meet a closed pipe, which
+# under pipefail fails the script once the dump outgrows od's first write.
+untouched=$(od -An -v -tx4 -w4 "$dump" | awk 'seen || $1 != "5ac3a55c" { seen = 1; next } { n++ } END { print n * 4 }')
 echo "stack: deepest use $((len - untouched)) bytes (RAM above .bss: $len bytes, never touched: $untouched)"
