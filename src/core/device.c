@@ -13,6 +13,7 @@
 
 #include <string.h>
 
+#include "compiler.h"
 #include "servos.h" /* the raw positions the port drives */
 
 #define RING_MASK ((uint16_t)(XGO_PORT_RX_RING_SIZE - 1u))
@@ -21,12 +22,7 @@
  * the servo positions, the NV record, the input's ring arithmetic) stay out
  * of line: inlined, they would sit in xgo_device_run's frame under every
  * control tick, the deepest call path of a firmware image (docs/mcu.md
- * "Sizes"). */
-#if defined(__GNUC__)
-#define OWN_FRAME __attribute__((noinline))
-#else
-#define OWN_FRAME
-#endif
+ * "Sizes"): XGO_OWN_FRAME. */
 
 void xgo_device_init(xgo_device_t *d, xgo_port_t *port, const xgo_board_config_t *cfg)
 {
@@ -89,7 +85,7 @@ static size_t reply_room(const xgo_device_t *d)
 }
 
 /* Moves replies to the port as far as it takes them. */
-OWN_FRAME static void send_replies(xgo_device_t *d)
+XGO_OWN_FRAME static void send_replies(xgo_device_t *d)
 {
     uint8_t chunk[32];
     while (xgo_board_tx_pending(&d->board) > 0) {
@@ -108,7 +104,7 @@ OWN_FRAME static void send_replies(xgo_device_t *d)
  * 9k - 8 bytes completes at most k frames (a request is at least 9 bytes and
  * the first may need only one more byte), each answered by at most one reply
  * of at most REPLY_MAX bytes. */
-OWN_FRAME static void feed_input(xgo_device_t *d, uint32_t now_ms)
+XGO_OWN_FRAME static void feed_input(xgo_device_t *d, uint32_t now_ms)
 {
     for (;;) {
         const uint16_t tail = d->rx_tail;
@@ -136,7 +132,7 @@ OWN_FRAME static void feed_input(xgo_device_t *d, uint32_t now_ms)
     }
 }
 
-OWN_FRAME static void write_servos(xgo_device_t *d)
+XGO_OWN_FRAME static void write_servos(xgo_device_t *d)
 {
     const xgo_servos_t *s = &d->board.motion.servos;
     int32_t raw[XGO_SERVO_COUNT];
@@ -148,7 +144,7 @@ OWN_FRAME static void write_servos(xgo_device_t *d)
 }
 
 /* Saves the non-volatile data once it has stopped changing. */
-OWN_FRAME static void track_nv(xgo_device_t *d)
+XGO_OWN_FRAME static void track_nv(xgo_device_t *d)
 {
     const uint32_t changes = xgo_board_nv_changes(&d->board);
     xgo_board_nv_t nv;

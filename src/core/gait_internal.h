@@ -85,13 +85,7 @@ typedef struct gait_tick_s {
  * of the shifted sum, so the same result. mul_q_inline: the same, always
  * inline (at a constant q the shifts fold): for the few sites that run
  * several times a tick inside one small function (gait_foot_velocity). */
-#if defined(__GNUC__)
-#define GAIT_ALWAYS_INLINE static inline __attribute__((always_inline))
-#else
-#define GAIT_ALWAYS_INLINE static inline
-#endif
-
-GAIT_ALWAYS_INLINE int32_t mul_q_inline(int32_t a, int32_t b, unsigned q)
+XGO_ALWAYS_INLINE int32_t mul_q_inline(int32_t a, int32_t b, unsigned q)
 {
 #if XGO_CORE_NARROW_CPU
     /* floor((p + 2^(q-1)) / 2^q) = floor(p / 2^q) + bit q-1 of p: no carry
@@ -124,7 +118,7 @@ static inline int32_t mul_q(int32_t a, int32_t b, unsigned q)
  * constant: about 12 instructions instead of a 45-instruction call.
  * test/test_gait_arith.c sweeps the edges against a 64-bit product.
  * Elsewhere (one widening multiply instruction): plain mul_q. */
-GAIT_ALWAYS_INLINE int32_t mul_q_u16(int32_t a, uint32_t b, unsigned q)
+XGO_ALWAYS_INLINE int32_t mul_q_u16(int32_t a, uint32_t b, unsigned q)
 {
 #if XGO_CORE_NARROW_CPU
     const uint32_t hi = (uint32_t)((a >> 16) * (int32_t)b);
@@ -149,7 +143,7 @@ GAIT_ALWAYS_INLINE int32_t mul_q_u16(int32_t a, uint32_t b, unsigned q)
  *   w p = (wh p + wl ph) 2^16 + wl pl,  |wh p| <= 2^30, |wl ph| < 2^20,
  * so floor((w p + 2^23) / 2^24) = (wh p + wl ph + floor(wl pl / 2^16) + 2^7) >> 8;
  * anything else takes the general product. test_gait_arith sweeps both. */
-GAIT_ALWAYS_INLINE int32_t mul_w_q24(int32_t w, int32_t p)
+XGO_ALWAYS_INLINE int32_t mul_w_q24(int32_t w, int32_t p)
 {
 #if XGO_CORE_NARROW_CPU
     if ((uint32_t)w + (1u << 26) < (1u << 27) && (uint32_t)p + (1u << 20) < (1u << 21)) {

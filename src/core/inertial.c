@@ -45,7 +45,7 @@ static int16_t to_lsb(int32_t q8)
  *     = floor((a c2 + floor((a c1 + floor((a c0 + 2^29) / 2^10)) / 2^10)) / 2^10)
  * with every sum below 2^30 + 2^21 (int32): exact, so the same result as
  * the 64-bit product (tools/mcu/run.sh compares). */
-XGO_WIDE_FN int32_t mul_q30(int32_t a, xgo_q30_t c) /* inline: 18 calls a tick */
+XGO_ALWAYS_INLINE int32_t mul_q30(int32_t a, xgo_q30_t c) /* inline: 18 calls a tick */
 {
 #if XGO_CORE_NARROW_CPU
     if ((uint32_t)a + (1u << 20) < (1u << 21)) {

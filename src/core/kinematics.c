@@ -17,6 +17,7 @@
  */
 #include "kinematics.h"
 
+#include "compiler.h"
 #include "wide.h" /* 32 x 32 -> 64 products without a libgcc call on a Cortex-M0 */
 
 #define Q4_SHIFT 4             /* planar lengths in 1/16 um */
@@ -25,12 +26,7 @@
 
 /* Kept out of line: a helper's locals must not widen the frame of the
  * function that goes deepest (leg IK -> branch -> projection; the static
- * stack bound, docs/mcu.md). */
-#if defined(__GNUC__)
-#define OWN_FRAME __attribute__((noinline))
-#else
-#define OWN_FRAME
-#endif
+ * stack bound, docs/mcu.md): XGO_OWN_FRAME. */
 
 /* ------------------------------------------------------------ helpers */
 
@@ -353,7 +349,7 @@ static int64_t dist2_um(const xgo_vec3_t *a, int32_t x, int32_t y, int32_t z)
 
 /* Both branches projected: whether the upper one's foot lands nearer the
  * target (the target as given: a far one scaled down points the same way). */
-OWN_FRAME static int upper_lands_nearer(const xgo_profile_t *p, int side, const leg_solution_t *below,
+XGO_OWN_FRAME static int upper_lands_nearer(const xgo_profile_t *p, int side, const leg_solution_t *below,
                                         const leg_solution_t *above, const xgo_vec3_t *target)
 {
     xgo_vec3_t fb, fa;

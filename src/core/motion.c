@@ -212,7 +212,7 @@ static uint8_t measured_feet(const xgo_motion_t *m, xgo_vec3_t machine[XGO_LEG_C
  * the joints put somewhere (leg, servo, debug modes; servos still catching
  * up). The lowest foot then stands on the ground: the body is taken as that
  * much lower. The gait waits at the stance until the feet are home. */
-XGO_MOTION_NOINLINE void xgo_motion_begin_settle(xgo_motion_t *m, uint8_t was_mode)
+XGO_OWN_FRAME void xgo_motion_begin_settle(xgo_motion_t *m, uint8_t was_mode)
 {
     xgo_vec3_t feet[XGO_LEG_COUNT];
     uint8_t contact = m->contact;
@@ -321,7 +321,7 @@ static void gait_command(xgo_motion_t *m, const xgo_regs_t *r, xgo_gait_command_
  * to a heading: at its highest rate), recomputed when the command or the
  * learnt margin changes; it applies while walking and while still stopping
  * (the last one kept). */
-static XGO_MOTION_NOINLINE void update_stroke(xgo_motion_t *m, const xgo_gait_command_t *cmd)
+static XGO_OWN_FRAME void update_stroke(xgo_motion_t *m, const xgo_gait_command_t *cmd)
 {
     xgo_gait_command_t c = *cmd;
     int32_t key[6];
@@ -352,7 +352,7 @@ static XGO_MOTION_NOINLINE void update_stroke(xgo_motion_t *m, const xgo_gait_co
 /* The pose the registers ask for, turned into one the legs hold with all
  * four feet down (reach.h), for the feet standing or running their stroke.
  * Counts the ticks where the two differ. */
-static XGO_MOTION_NOINLINE void reachable_target(xgo_motion_t *m, const xgo_regs_t *r,
+static XGO_OWN_FRAME void reachable_target(xgo_motion_t *m, const xgo_regs_t *r,
                                                  const xgo_gait_command_t *cmd)
 {
     xgo_body_pose_t asked, base, spread;
@@ -379,7 +379,7 @@ static void solve_tick(xgo_motion_t *m, const xgo_body_pose_t *pose, const xgo_v
 
 /* A running action's tick (action_targets), solved. Out of line, as
  * walk_tick. */
-static XGO_MOTION_NOINLINE void action_tick(xgo_motion_t *m, int32_t *yaw_rate_mdeg_s)
+static XGO_OWN_FRAME void action_tick(xgo_motion_t *m, int32_t *yaw_rate_mdeg_s)
 {
     xgo_vec3_t feet[XGO_LEG_COUNT];
     xgo_body_pose_t pose;
@@ -391,7 +391,7 @@ static XGO_MOTION_NOINLINE void action_tick(xgo_motion_t *m, int32_t *yaw_rate_m
  * the body following the reachable target, solved; returns 1 while
  * walking or moving. Out of line: its feet and pose are not on the stack
  * while reachable_target searches. */
-static XGO_MOTION_NOINLINE int walk_tick(xgo_motion_t *m, xgo_gait_command_t *cmd,
+static XGO_OWN_FRAME int walk_tick(xgo_motion_t *m, xgo_gait_command_t *cmd,
                                          int32_t *yaw_rate_mdeg_s)
 {
     xgo_vec3_t feet[XGO_LEG_COUNT];
@@ -463,7 +463,7 @@ static int32_t toward(int32_t now, int32_t goal, int32_t step)
 /* Leg mode once home: each foot a step toward its registers', its joints
  * the servos' targets. Out of line: its joint array is not on the stack
  * while the other modes go deep. */
-static XGO_MOTION_NOINLINE void leg_tick(xgo_motion_t *m, const xgo_regs_t *r)
+static XGO_OWN_FRAME void leg_tick(xgo_motion_t *m, const xgo_regs_t *r)
 {
     const xgo_profile_t *p = m->profile;
     int32_t q[XGO_SERVO_COUNT];
@@ -537,7 +537,7 @@ static int32_t servo_mode_step(const xgo_regs_t *r)
  * from the planted ones, how far the body moved on the floor. Outside the
  * gait and the actions nobody says which feet are down: those within 1 mm
  * of the lowest are. */
-static XGO_MOTION_NOINLINE void measure_feet(xgo_motion_t *m, int contact_known)
+static XGO_OWN_FRAME void measure_feet(xgo_motion_t *m, int contact_known)
 {
     xgo_vec3_t machine_fk[XGO_LEG_COUNT];
     const xgo_vec3_t *machine = machine_fk;
@@ -605,7 +605,7 @@ void xgo_motion_publish(const xgo_motion_t *m, xgo_regs_t *r)
 
 /* The accelerometer and gyroscope see the body where the odometry and the
  * body pose put it, with the attitude the IMU reports. */
-static XGO_MOTION_NOINLINE void inertial_tick(xgo_motion_t *m)
+static XGO_OWN_FRAME void inertial_tick(xgo_motion_t *m)
 {
     const int32_t att[3] = {m->imu.roll_mdeg, m->imu.pitch_mdeg, m->imu.yaw_mdeg};
     int64_t body_q8[3];

@@ -5,16 +5,9 @@
 #ifndef XGO_MOTION_INTERNAL_H
 #define XGO_MOTION_INTERNAL_H
 
+#include "compiler.h" /* XGO_OWN_FRAME: functions whose locals are dead while the tick
+                        * goes deep (reach search, leg IK) stay out of its frame */
 #include "motion.h"
-
-/* Kept out of line: a function whose locals are dead while the tick goes
- * deep (the reach search, leg IK) must not lend them to the frame of the
- * function that calls deep (the static stack bound, docs/mcu.md). */
-#if defined(__GNUC__)
-#define XGO_MOTION_NOINLINE __attribute__((noinline))
-#else
-#define XGO_MOTION_NOINLINE
-#endif
 
 /* The host's writes since the last tick, in the documented order (a reset
  * comes last, so it wins). */

@@ -171,7 +171,7 @@ void xgo_motion_gait_command(xgo_motion_t *m, const xgo_regs_t *r, xgo_gait_comm
 /* Feet and pose for a running action (255, the reset, stands for 1 s): the
  * action's offsets on the standing pose and the stance; a foot not lifted
  * is on the ground. */
-XGO_MOTION_NOINLINE void xgo_motion_asked_pose(xgo_motion_t *m, const xgo_regs_t *r,
+XGO_OWN_FRAME void xgo_motion_asked_pose(xgo_motion_t *m, const xgo_regs_t *r,
                                                xgo_body_pose_t *pose, xgo_body_pose_t *base,
                                                xgo_body_pose_t *spread)
 {

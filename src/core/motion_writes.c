@@ -248,7 +248,7 @@ static int ends_a_turn(const xgo_regs_t *r)
     return any;
 }
 
-XGO_MOTION_NOINLINE void xgo_motion_take_writes(xgo_motion_t *m, xgo_regs_t *r)
+XGO_OWN_FRAME void xgo_motion_take_writes(xgo_motion_t *m, xgo_regs_t *r)
 {
     int cancel;
     if (!xgo_regs_take_any_written(r)) {

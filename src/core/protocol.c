@@ -14,6 +14,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "compiler.h"
 
 /* Positions inside a frame. */
 enum { POS_HEAD0 = 0, POS_HEAD1 = 1, POS_LEN = 2, POS_TYPE = 3, POS_ADDR = 4, POS_DATA = 5 };
@@ -278,10 +279,7 @@ void xgo_parser_hangup(xgo_parser_t *p)
  * goes that path, with its rejections, rescans and counters. Kept out of
  * line: inlined, it makes the byte-at-a-time path (an MCU's RX interrupt
  * feeding single bytes) pay for its registers on every call. */
-#if defined(__GNUC__)
-__attribute__((noinline))
-#endif
-static size_t take_whole_frame(xgo_parser_t *p, const uint8_t *in, size_t avail)
+XGO_OWN_FRAME static size_t take_whole_frame(xgo_parser_t *p, const uint8_t *in, size_t avail)
 {
     const size_t len = in[POS_LEN];
     const size_t n = len - XGO_FRAME_OVERHEAD;

@@ -5,6 +5,7 @@
 
 #include <string.h>
 
+#include "compiler.h"
 #include "kinematics.h"
 
 #define SCALE_ONE 8        /* the whole deviation from the standing pose */
@@ -20,16 +21,11 @@ static int same_pose(const xgo_body_pose_t *a, const xgo_body_pose_t *b)
 
 /* The search sits on the deepest stack path (reach -> leg IK -> branch ->
  * projection; docs/mcu.md): helpers with locals of their own stay out of
- * line, so their frames are not on it. */
-#if defined(__GNUC__)
-#define OWN_FRAME __attribute__((noinline))
-#else
-#define OWN_FRAME
-#endif
+ * line (XGO_OWN_FRAME), so their frames are not on it. */
 
 /* The feet stance + sign * stroke (stroke NULL: the stance) with the body
  * at pose, in the leg frames (body IK in place). */
-OWN_FRAME static void feet_in_legs(const xgo_profile_t *p, const xgo_body_pose_t *pose,
+XGO_OWN_FRAME static void feet_in_legs(const xgo_profile_t *p, const xgo_body_pose_t *pose,
                                    const xgo_vec3_t stance[XGO_LEG_COUNT], const xgo_vec3_t *stroke,
                                    int sign, xgo_vec3_t feet[XGO_LEG_COUNT])
 {
@@ -50,7 +46,7 @@ OWN_FRAME static void feet_in_legs(const xgo_profile_t *p, const xgo_body_pose_t
  * the body frame (a leg frame with z up): the search shifts the body by them
  * in the machine frame, off by the attitude's turn (at most 22 degrees) -
  * the descent after the jump takes care of the rest. */
-OWN_FRAME static unsigned check_feet(const xgo_profile_t *p, const xgo_body_pose_t *pose,
+XGO_OWN_FRAME static unsigned check_feet(const xgo_profile_t *p, const xgo_body_pose_t *pose,
                                      const xgo_vec3_t stance[XGO_LEG_COUNT], const xgo_vec3_t *stroke,
                                      int sign, xgo_vec3_t *miss_sum, uint32_t *total)
 {

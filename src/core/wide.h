@@ -18,12 +18,8 @@
 
 #include <stdint.h>
 
-/* Inline even at -Os: a call would eat most of the gain. */
-#if defined(__GNUC__)
-#define XGO_WIDE_FN static inline __attribute__((always_inline))
-#else
-#define XGO_WIDE_FN static inline
-#endif
+#include "compiler.h" /* XGO_ALWAYS_INLINE: a call would eat most of the gain */
+
 
 /* XGO_CORE_NARROW_CPU: a core without a divide instruction and without
  * 64-bit or widening arithmetic (ARMv6-M). There a few hot divisions whose
@@ -49,7 +45,7 @@
 #if defined(XGO_WIDE_MUL_SPLIT) || defined(__ARM_ARCH_6M__) || defined(__ARM_ARCH_8M_BASE__)
 
 /* Unsigned 32 x 32 -> 64 from 16-bit halves. */
-XGO_WIDE_FN uint64_t xgo_umul_wide(uint32_t a, uint32_t b)
+XGO_ALWAYS_INLINE uint64_t xgo_umul_wide(uint32_t a, uint32_t b)
 {
     uint32_t al = a & 0xFFFFu, ah = a >> 16, bl = b & 0xFFFFu, bh = b >> 16;
     uint32_t lo = al * bl, hi = ah * bh;
@@ -65,7 +61,7 @@ XGO_WIDE_FN uint64_t xgo_umul_wide(uint32_t a, uint32_t b)
 /* Signed: the unsigned product of the two's-complement bit patterns, minus
  * 2^32 * b if a < 0 and 2^32 * a if b < 0 (modulo 2^64); the result is
  * exact since |a * b| <= 2^62. */
-XGO_WIDE_FN int64_t xgo_mul_wide(int32_t a, int32_t b)
+XGO_ALWAYS_INLINE int64_t xgo_mul_wide(int32_t a, int32_t b)
 {
     uint64_t p = xgo_umul_wide((uint32_t)a, (uint32_t)b);
     uint32_t hi = (uint32_t)(p >> 32);
@@ -82,12 +78,12 @@ XGO_WIDE_FN int64_t xgo_mul_wide(int32_t a, int32_t b)
 
 #else
 
-XGO_WIDE_FN uint64_t xgo_umul_wide(uint32_t a, uint32_t b)
+XGO_ALWAYS_INLINE uint64_t xgo_umul_wide(uint32_t a, uint32_t b)
 {
     return (uint64_t)a * b;
 }
 
-XGO_WIDE_FN int64_t xgo_mul_wide(int32_t a, int32_t b)
+XGO_ALWAYS_INLINE int64_t xgo_mul_wide(int32_t a, int32_t b)
 {
     return (int64_t)a * b;
 }
