@@ -254,6 +254,73 @@ static void test_diagnostic_block_over_the_wire_matches_counters(void)
     TEST_ASSERT_EQUAL_STRING("unknown", xgo_diag_name(XGO_DIAG_COUNT));
 }
 
+/* The block is formed from the counters when it is read (the register
+ * image keeps no copy): uint32 little-endian in xgo_diag_t order, also in a
+ * read that starts below it, and the traced reply is what the wire got. */
+static uint8_t traced_reply[256];
+static size_t traced_reply_len;
+
+static void record_reply(void *ctx, const xgo_trace_event_t *ev)
+{
+    (void)ctx;
+    if (ev->kind == XGO_TRACE_TX) {
+        memcpy(traced_reply, ev->frame->data, ev->frame->len);
+        traced_reply_len = ev->frame->len;
+    }
+}
+
+static void test_diag_block_is_formed_on_read(void)
+{
+    uint8_t wire[0x100 - 0xB0];
+    uint32_t c[XGO_DIAG_COUNT];
+    size_t i;
+    /* Distinct values with all four bytes set; frames_ok grows by the read. */
+#define DIAG_SET_(id, name, member) board.member = 0x01020304u * (uint32_t)(XGO_DIAG_##id + 1);
+    XGO_DIAG_LIST(DIAG_SET_)
+#undef DIAG_SET_
+    xgo_board_set_trace(&board, record_reply, NULL);
+    wire_read(0xB0, sizeof wire, wire);
+    xgo_board_counters(&board, c);
+    TEST_ASSERT_EQUAL_HEX32(0x01020304u + 1u, c[XGO_DIAG_FRAMES_OK]);
+    for (i = 0; i < 0xC4 - 0xB0; i++) {
+        TEST_ASSERT_EQUAL_HEX8_MESSAGE(0, wire[i], "unmapped below the block");
+    }
+    for (i = 0; i < XGO_DIAG_COUNT; i++) {
+        const uint8_t *p = &wire[0xC4 - 0xB0 + 4 * i];
+        const uint32_t v = (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 |
+                           (uint32_t)p[3] << 24;
+        TEST_ASSERT_EQUAL_HEX32_MESSAGE(c[i], v, xgo_diag_name((xgo_diag_t)i));
+    }
+    for (i = 0xC4 - 0xB0 + 4 * XGO_DIAG_COUNT; i < sizeof wire; i++) {
+        TEST_ASSERT_EQUAL_HEX8_MESSAGE(0, wire[i], "an unused slot of the diagnostic block");
+    }
+    TEST_ASSERT_EQUAL_UINT(sizeof wire, traced_reply_len);
+    TEST_ASSERT_EQUAL_HEX8_ARRAY(wire, traced_reply, sizeof wire);
+}
+
+/* Replies are built in place at the end of the transmit queue, in one
+ * piece: when the space after the bytes still waiting is too short, those
+ * move to the front first, and the stream keeps its order. */
+static void test_reply_after_waiting_bytes_keeps_the_stream(void)
+{
+    static uint8_t got[XGO_TX_BUFFER_SIZE + 108];
+    const size_t reply = 100 + 8, k = XGO_TX_BUFFER_SIZE / reply, drained = XGO_TX_BUFFER_SIZE / 2;
+    size_t i;
+    for (i = 0; i < k; i++) {
+        send_read(0x00, 100); /* below the diagnostic block: the same reply each time */
+    }
+    TEST_ASSERT_EQUAL_UINT(drained, xgo_board_transmit(&board, got, drained));
+    send_read(0x00, 100); /* fits only after the waiting bytes moved */
+    TEST_ASSERT_EQUAL_UINT((k + 1) * reply - drained, xgo_board_tx_pending(&board));
+    TEST_ASSERT_EQUAL_UINT((k + 1) * reply - drained,
+                           xgo_board_transmit(&board, got + drained, sizeof got - drained));
+    for (i = 0; i <= k; i++) {
+        TEST_ASSERT_EQUAL_INT(XGO_TEST_REPLY_OK,
+                              xgo_test_check_reply(&got[i * reply], reply, 0x00, 100));
+        TEST_ASSERT_EQUAL_HEX8_ARRAY(&got[5], &got[i * reply + 5], 100);
+    }
+}
+
 static void test_transmit_overflow_drops_whole_replies(void)
 {
     uint8_t out[XGO_TX_BUFFER_SIZE + 256];
@@ -388,6 +455,8 @@ int main(void)
     RUN_TEST(test_auto_clear_registers_clear_on_the_next_tick);
     RUN_TEST(test_plain_registers_do_not_clear_on_tick);
     RUN_TEST(test_diagnostic_block_over_the_wire_matches_counters);
+    RUN_TEST(test_diag_block_is_formed_on_read);
+    RUN_TEST(test_reply_after_waiting_bytes_keeps_the_stream);
     RUN_TEST(test_transmit_overflow_drops_whole_replies);
     RUN_TEST(test_partial_transmit_keeps_order_across_wrap);
     RUN_TEST(test_lite_profile_identity);

@@ -207,21 +207,77 @@ static void test_frame_length_limit(void)
                              after[XGO_DIAG_FRAMES_OK] - before[XGO_DIAG_FRAMES_OK]);
 }
 
+/* The traced replies and dropped replies (their data copied at the event). */
+static struct {
+    unsigned tx, overflows;
+    uint8_t addr, len;
+    uint8_t data[247];
+} traced;
+
+static void trace_replies(void *ctx, const xgo_trace_event_t *ev)
+{
+    (void)ctx;
+    if (ev->kind == XGO_TRACE_RX || ev->frame == NULL) {
+        return;
+    }
+    if (ev->kind == XGO_TRACE_TX) {
+        traced.tx++;
+    } else if (ev->reason == XGO_DROP_TX_OVERFLOW) {
+        traced.overflows++;
+    } else {
+        return;
+    }
+    traced.addr = ev->frame->addr;
+    traced.len = ev->frame->len;
+    memcpy(traced.data, ev->frame->data, ev->frame->len);
+}
+
 /* A read whose reply does not fit the transmit buffer even when it is empty
  * (firmware: 128 bytes, so reads of up to 120) is dropped whole and counted
- * in tx_overflow; the next read is answered. The full core answers both. */
+ * in tx_overflow: not a byte of it is queued, and the trace still shows the
+ * data it would have carried. The next read is answered, byte for byte what
+ * the registers hold (the reply is built in place in the transmit buffer).
+ * The full core answers both. */
 static void test_reply_longer_than_transmit_buffer(void)
 {
     static uint8_t reply[256];
+    uint8_t regs[121];
     uint32_t before[XGO_DIAG_COUNT], after[XGO_DIAG_COUNT];
     const int fits = XGO_TX_BUFFER_SIZE >= 121u + 8u;
+    unsigned sum = 0x80u + 0x12u + 0x30u, i;
     init_model(XGO_MODEL_MINI);
+    memset(&traced, 0, sizeof traced);
+    xgo_board_set_trace(&board, trace_replies, NULL);
     xgo_board_counters(&board, before);
     TEST_ASSERT_EQUAL_UINT(fits ? 129u : 0u, wire_read(0x00, 121, reply, sizeof reply));
-    TEST_ASSERT_EQUAL_UINT(128, wire_read(0x00, 120, reply, sizeof reply));
+    TEST_ASSERT_EQUAL_UINT(0, xgo_board_tx_pending(&board)); /* nothing half-queued */
+    TEST_ASSERT_EQUAL_UINT(fits ? 0u : 1u, traced.overflows);
+    TEST_ASSERT_EQUAL_UINT(121, traced.len);
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_board_read(&board, 0x00, 121, regs));
+    TEST_ASSERT_EQUAL_HEX8_ARRAY(regs, traced.data, 121);
+
+    /* The longest answered read: 0x30..0xA7, the whole-unit registers, the
+     * joints, the IMU bytes and the unmapped ones after them. */
+    TEST_ASSERT_EQUAL_UINT(128, wire_read(0x30, 120, reply, sizeof reply));
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_board_read(&board, 0x30, 120, regs));
+    TEST_ASSERT_EQUAL_HEX8(0x55, reply[0]);
+    TEST_ASSERT_EQUAL_HEX8(0x00, reply[1]);
+    TEST_ASSERT_EQUAL_HEX8(128, reply[2]);
+    TEST_ASSERT_EQUAL_HEX8(0x12, reply[3]);
+    TEST_ASSERT_EQUAL_HEX8(0x30, reply[4]);
+    TEST_ASSERT_EQUAL_HEX8_ARRAY(regs, &reply[5], 120);
+    for (i = 0; i < 120; i++) {
+        sum += regs[i];
+    }
+    TEST_ASSERT_EQUAL_HEX8((uint8_t)~sum, reply[125]);
+    TEST_ASSERT_EQUAL_HEX8(0x00, reply[126]);
+    TEST_ASSERT_EQUAL_HEX8(0xAA, reply[127]);
+    TEST_ASSERT_EQUAL_UINT(fits ? 2u : 1u, traced.tx);
+    TEST_ASSERT_EQUAL_HEX8_ARRAY(regs, traced.data, 120);
     xgo_board_counters(&board, after);
     TEST_ASSERT_EQUAL_UINT32(fits ? 0u : 1u,
                              after[XGO_DIAG_TX_OVERFLOW] - before[XGO_DIAG_TX_OVERFLOW]);
+    xgo_board_set_trace(&board, NULL, NULL);
 }
 
 /* Names only where they are built in; the lookups answer either way. */

@@ -40,6 +40,7 @@ extern "C" {
 
 /* header(2) + LEN + TYPE + ADDR + SUM + tail(2) */
 #define XGO_FRAME_OVERHEAD 8u
+#define XGO_FRAME_DATA_POS 5u /* the first data byte: 55 00 LEN TYPE ADDR DATA... */
 #define XGO_FRAME_MAX_LEN 255u
 #define XGO_FRAME_MAX_DATA (XGO_FRAME_MAX_LEN - XGO_FRAME_OVERHEAD) /* 247 */
 #define XGO_READ_REQUEST_LEN 9u
@@ -154,6 +155,12 @@ uint8_t xgo_frame_checksum(uint8_t len, uint8_t type, uint8_t addr, const uint8_
  * n > 247 or out_size is too small (nothing written then). */
 size_t xgo_frame_encode(uint8_t type, uint8_t addr, const uint8_t *data, size_t n,
                         uint8_t *out, size_t out_size);
+
+/* Completes a frame in place whose n data bytes (1..247) the caller already
+ * put at out + XGO_FRAME_DATA_POS: header, checksum and tail around them.
+ * Returns the frame size, n + 8. The board builds its replies so, straight
+ * in its transmit buffer (no frame-sized buffer on the stack). */
+size_t xgo_frame_seal(uint8_t type, uint8_t addr, size_t n, uint8_t *out);
 
 #ifdef __cplusplus
 }

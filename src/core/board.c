@@ -65,31 +65,35 @@ static void emit(xgo_board_t *b, xgo_trace_kind_t kind, xgo_drop_reason_t reason
     b->trace(b->trace_ctx, &ev);
 }
 
-/* Queue a whole frame or nothing: a truncated reply would desynchronise the
- * host's parser. */
-static int tx_push(xgo_board_t *b, const uint8_t *bytes, size_t n)
+/* The transmit queue is linear: the bytes waiting are tx[tx_head ..
+ * tx_head + tx_len). A reply is built in place at its end, so it needs room
+ * in one piece: when the space after the waiting bytes is too short, they
+ * move to the front first (rare: the device feeds input only when a whole
+ * reply fits, and a drained queue starts at the front again). Whole frame
+ * or nothing: a truncated reply would desynchronise the host's parser, so
+ * NULL (and nothing changes) when the frame does not fit. */
+static uint8_t *tx_reserve(xgo_board_t *b, size_t size)
 {
-    size_t i;
-    if (n > XGO_TX_BUFFER_SIZE - (size_t)b->tx_len) {
-        return 0;
+    if (size > XGO_TX_BUFFER_SIZE - (size_t)b->tx_len) {
+        return NULL;
     }
-    for (i = 0; i < n; i++) {
-        b->tx[(b->tx_head + b->tx_len + i) % XGO_TX_BUFFER_SIZE] = bytes[i];
+    if ((size_t)b->tx_head + b->tx_len + size > XGO_TX_BUFFER_SIZE) {
+        memmove(b->tx, &b->tx[b->tx_head], b->tx_len);
+        b->tx_head = 0;
     }
-    b->tx_len = (uint16_t)(b->tx_len + n);
-    return 1;
+    return &b->tx[b->tx_head + b->tx_len];
 }
 
 size_t xgo_board_transmit(xgo_board_t *b, uint8_t *out, size_t max)
 {
-    size_t n = b->tx_len < max ? b->tx_len : max;
-    size_t i;
+    const size_t n = b->tx_len < max ? b->tx_len : max;
     XGO_ASSERT(out != NULL || max == 0);
-    for (i = 0; i < n; i++) {
-        out[i] = b->tx[(b->tx_head + i) % XGO_TX_BUFFER_SIZE];
+    if (n == 0) {
+        return 0;
     }
-    b->tx_head = (uint16_t)((b->tx_head + n) % XGO_TX_BUFFER_SIZE);
+    memcpy(out, &b->tx[b->tx_head], n);
     b->tx_len = (uint16_t)(b->tx_len - n);
+    b->tx_head = (uint16_t)(b->tx_len == 0 ? 0u : b->tx_head + n);
     return n;
 }
 
@@ -98,11 +102,26 @@ size_t xgo_board_tx_pending(const xgo_board_t *b)
     return b->tx_len;
 }
 
+/* Counter i of the diagnostic block as it is now (XGO_DIAG_LIST). */
+static uint32_t diag_counter(const xgo_board_t *b, unsigned i)
+{
+    switch (i) {
+#define DIAG_CASE_(id, name, member)                                                       \
+    case XGO_DIAG_##id:                                                                     \
+        return b->member;
+        XGO_DIAG_LIST(DIAG_CASE_)
+#undef DIAG_CASE_
+    default:
+        return 0;
+    }
+}
+
 void xgo_board_counters(const xgo_board_t *b, uint32_t out[XGO_DIAG_COUNT])
 {
-#define DIAG_READ_(id, name, member) out[XGO_DIAG_##id] = b->member;
-    XGO_DIAG_LIST(DIAG_READ_)
-#undef DIAG_READ_
+    unsigned i;
+    for (i = 0; i < XGO_DIAG_COUNT; i++) {
+        out[i] = diag_counter(b, i);
+    }
 }
 
 static uint8_t count_unmapped(const xgo_regs_t *r, const xgo_frame_t *f)
@@ -117,23 +136,58 @@ static uint8_t count_unmapped(const xgo_regs_t *r, const xgo_frame_t *f)
     return n;
 }
 
-/* Queue one reply frame (TYPE 0x12) whole, or count the overflow. */
-static void send_reply(xgo_board_t *b, uint8_t addr, const uint8_t *data, size_t n)
+/* The reply (TYPE 0x12) whose n data bytes are in place in the frame
+ * tx_reserve gave: completed, queued and traced. */
+static void reply_queued(xgo_board_t *b, uint8_t *frame, uint8_t addr, size_t n)
 {
-    uint8_t frame_bytes[XGO_FRAME_MAX_LEN];
     xgo_frame_t reply;
-    const size_t size = xgo_frame_encode(XGO_TYPE_READ_REPLY, addr, data, n, frame_bytes,
-                                         sizeof frame_bytes);
+    b->tx_len = (uint16_t)(b->tx_len + xgo_frame_seal(XGO_TYPE_READ_REPLY, addr, n, frame));
+    reply.type = XGO_TYPE_READ_REPLY;
+    reply.addr = addr;
+    reply.len = (uint8_t)n;
+    reply.data = &frame[XGO_FRAME_DATA_POS];
+    emit(b, XGO_TRACE_TX, XGO_DROP_NONE, &reply, NULL, 0, 0);
+}
+
+/* A reply that did not fit: dropped whole, counted, traced with the data it
+ * would have carried (data may be NULL when nobody traces). */
+static void reply_lost(xgo_board_t *b, uint8_t addr, const uint8_t *data, size_t n)
+{
+    xgo_frame_t reply;
+    b->tx_overflows++;
     reply.type = XGO_TYPE_READ_REPLY;
     reply.addr = addr;
     reply.len = (uint8_t)n;
     reply.data = data;
-    if (!tx_push(b, frame_bytes, size)) {
-        b->tx_overflows++;
-        emit(b, XGO_TRACE_DROP, XGO_DROP_TX_OVERFLOW, &reply, NULL, 0, 0);
+    emit(b, XGO_TRACE_DROP, XGO_DROP_TX_OVERFLOW, &reply, NULL, 0, 0);
+}
+
+/* Registers as a host read returns them: the register file's image and
+ * views, and the diagnostic block formed from the counters as they are now
+ * (uint32 little-endian; the register image keeps no copy of them). The
+ * caller checked the range (xgo_regs_read's rule). */
+static void read_registers(const xgo_board_t *b, uint8_t addr, size_t n, uint8_t *out)
+{
+    const size_t end = (size_t)addr + n;
+    size_t reg = addr > XGO_REG_DIAG ? (size_t)addr : (size_t)XGO_REG_DIAG;
+    (void)xgo_regs_read(&b->regs, addr, n, out);
+    for (; reg < end && reg < XGO_REG_DIAG + 4u * XGO_DIAG_COUNT; reg++) {
+        const unsigned i = (unsigned)(reg - XGO_REG_DIAG);
+        out[reg - addr] = (uint8_t)(diag_counter(b, i / 4u) >> (8u * (i % 4u)));
+    }
+}
+
+/* A read whose reply did not fit: its data exists only for a trace, in a
+ * frame of its own (off the answered reply's path, which needs no buffer). */
+XGO_OWN_FRAME static void read_lost(xgo_board_t *b, uint8_t addr, size_t n)
+{
+    uint8_t data[XGO_FRAME_MAX_DATA];
+    if (b->trace == NULL) {
+        reply_lost(b, addr, NULL, n);
         return;
     }
-    emit(b, XGO_TRACE_TX, XGO_DROP_NONE, &reply, NULL, 0, 0);
+    read_registers(b, addr, n, data);
+    reply_lost(b, addr, data, n);
 }
 
 int xgo_frame_asks_upgrade(const xgo_frame_t *f)
@@ -155,25 +209,32 @@ static xgo_drop_reason_t handle_write(xgo_board_t *b, const xgo_frame_t *f)
         /* The host waits for an answer; an emulator has no bootloader to
          * hand over to, so it says no at once (docs/decisions.md). */
         static const uint8_t answer = XGO_UPGRADE_ANSWER;
-        send_reply(b, XGO_REG_UPGRADE, &answer, 1);
+        uint8_t *frame = tx_reserve(b, 1u + XGO_FRAME_OVERHEAD);
+        if (frame == NULL) {
+            reply_lost(b, XGO_REG_UPGRADE, &answer, 1);
+        } else {
+            frame[XGO_FRAME_DATA_POS] = answer;
+            reply_queued(b, frame, XGO_REG_UPGRADE, 1);
+        }
     }
     return XGO_DROP_NONE;
 }
 
+/* The reply is read straight into the transmit buffer: no copy of it on
+ * the stack, whose deepest path this was (docs/mcu.md "Sizes"). The parser
+ * accepted the range (a read it passes is in range). */
 static void handle_read(xgo_board_t *b, const xgo_frame_t *f)
 {
-    uint8_t data[XGO_FRAME_MAX_DATA];
-    uint32_t counters[XGO_DIAG_COUNT];
     const size_t n = f->data[0];
-
+    uint8_t *frame;
     emit(b, XGO_TRACE_RX, XGO_DROP_NONE, f, NULL, 0, 0);
-    xgo_board_counters(b, counters);
-    xgo_regs_set_diag(&b->regs, counters);
-    if (xgo_regs_read(&b->regs, f->addr, n, data) != XGO_DROP_NONE) {
-        XGO_ASSERT(!"a read the parser accepted is in range"); /* ruled out */
+    frame = tx_reserve(b, n + XGO_FRAME_OVERHEAD);
+    if (frame == NULL) {
+        read_lost(b, f->addr, n);
         return;
     }
-    send_reply(b, f->addr, data, n);
+    read_registers(b, f->addr, n, &frame[XGO_FRAME_DATA_POS]);
+    reply_queued(b, frame, f->addr, n);
 }
 
 static void on_frame(void *ctx, const xgo_frame_t *f)
@@ -307,23 +368,11 @@ void xgo_board_push(xgo_board_t *b, int32_t roll_mdeg, int32_t pitch_mdeg)
 
 xgo_drop_reason_t xgo_board_read(const xgo_board_t *b, uint8_t addr, size_t n, uint8_t *out)
 {
-    uint32_t counters[XGO_DIAG_COUNT];
-    xgo_drop_reason_t why;
-    size_t i;
     XGO_ASSERT(out != NULL);
-    why = xgo_regs_read(&b->regs, addr, n, out);
-    if (why != XGO_DROP_NONE) {
-        return why;
+    if (n == 0 || n > XGO_FRAME_MAX_DATA || (size_t)addr + n > XGO_REG_COUNT) {
+        return XGO_DROP_BAD_RANGE; /* xgo_regs_read's rule; out untouched */
     }
-    /* The block in regs is refreshed only by a read frame: overlay the
-     * counters as they are now (uint32 little-endian, as on the wire). */
-    xgo_board_counters(b, counters);
-    for (i = 0; i < 4u * XGO_DIAG_COUNT; i++) {
-        const size_t reg = XGO_REG_DIAG + i;
-        if (reg >= addr && reg < (size_t)addr + n) {
-            out[reg - addr] = (uint8_t)(counters[i / 4u] >> (8u * (i % 4u)));
-        }
-    }
+    read_registers(b, addr, n, out);
     return XGO_DROP_NONE;
 }
 

@@ -49,23 +49,28 @@ uint8_t xgo_frame_checksum(uint8_t len, uint8_t type, uint8_t addr, const uint8_
     return (uint8_t)~sum;
 }
 
-size_t xgo_frame_encode(uint8_t type, uint8_t addr, const uint8_t *data, size_t n,
-                        uint8_t *out, size_t out_size)
+size_t xgo_frame_seal(uint8_t type, uint8_t addr, size_t n, uint8_t *out)
 {
-    size_t total = n + XGO_FRAME_OVERHEAD;
-    if (n == 0 || n > XGO_FRAME_MAX_DATA || out == NULL || out_size < total) {
-        return 0;
-    }
+    const size_t total = n + XGO_FRAME_OVERHEAD;
     out[POS_HEAD0] = XGO_FRAME_HEAD0;
     out[POS_HEAD1] = XGO_FRAME_HEAD1;
     out[POS_LEN] = (uint8_t)total;
     out[POS_TYPE] = type;
     out[POS_ADDR] = addr;
-    memcpy(&out[POS_DATA], data, n);
-    out[POS_DATA + n] = xgo_frame_checksum((uint8_t)total, type, addr, data, n);
+    out[POS_DATA + n] = xgo_frame_checksum((uint8_t)total, type, addr, &out[POS_DATA], n);
     out[POS_DATA + n + 1] = XGO_FRAME_TAIL0;
     out[POS_DATA + n + 2] = XGO_FRAME_TAIL1;
     return total;
+}
+
+size_t xgo_frame_encode(uint8_t type, uint8_t addr, const uint8_t *data, size_t n,
+                        uint8_t *out, size_t out_size)
+{
+    if (n == 0 || n > XGO_FRAME_MAX_DATA || out == NULL || out_size < n + XGO_FRAME_OVERHEAD) {
+        return 0;
+    }
+    memcpy(&out[POS_DATA], data, n);
+    return xgo_frame_seal(type, addr, n, out);
 }
 
 void xgo_parser_init_side(xgo_parser_t *p, const xgo_parser_sink_t *sink, uint32_t timeout_ms,

@@ -62,7 +62,6 @@ void xgo_regs_set_attitude(xgo_regs_t *r, int32_t roll_mdeg, int32_t pitch_mdeg,
  * re-encoded from its last byte (cheap while it stays in that byte). */
 void xgo_regs_set_joints(xgo_regs_t *r, const xgo_profile_t *p,
                          const int32_t q_mdeg[XGO_LEG_COUNT][XGO_JOINT_COUNT]);
-void xgo_regs_set_diag(xgo_regs_t *r, const uint32_t counters[XGO_DIAG_COUNT]);
 /* The IMU block's acceleration (16384 LSB = 1 g) and angular rate (16.4 LSB
  * = 1 deg/s), body axes x forward, y left, z up (docs/motion.md). */
 void xgo_regs_set_inertial(xgo_regs_t *r, const int16_t accel[3], const int16_t gyro[3]);

@@ -505,11 +505,3 @@ void xgo_regs_set_joints(xgo_regs_t *r, const xgo_profile_t *p,
 /* Every counter has its slot in 0xC4..0xFF; a 16th needs a new block. */
 typedef char xgo_regs_diag_fits_[(XGO_DIAG_COUNT <= XGO_DIAG_SLOTS &&
                                   XGO_REG_DIAG + 4u * XGO_DIAG_SLOTS == 0x100u) ? 1 : -1];
-
-void xgo_regs_set_diag(xgo_regs_t *r, const uint32_t counters[XGO_DIAG_COUNT])
-{
-    size_t i;
-    for (i = 0; i < XGO_DIAG_COUNT; i++) {
-        put_u32_le(&r->mem[XGO_REG_DIAG + 4u * i], counters[i]);
-    }
-}
