@@ -91,6 +91,7 @@ typedef struct xgo_gait_s {
     uint32_t cache_rate_fit;
     uint8_t cache_cmd_type;
     uint8_t cache_v_type;
+    uint16_t cache_tau_q16;    /* the stance time at cache_rate_fit (in what was padding) */
 
     /* ---- diagnostics ---- */
     uint32_t ticks;           /* ticks since init */

@@ -20,17 +20,9 @@ static uint32_t span_of(const xgo_range_t *r)
     return (uint32_t)r->hi - (uint32_t)r->lo;
 }
 
-uint8_t xgo_range_to_byte(const xgo_range_t *r, int32_t v)
+/* num / span for 0 < num < 255 * span: a byte. */
+static uint8_t byte_quotient(uint32_t num, uint32_t span)
 {
-    uint32_t span, num;
-    if (r->hi <= r->lo || v <= r->lo) {
-        return 0u;
-    }
-    if (v >= r->hi) {
-        return 255u;
-    }
-    span = span_of(r);
-    num = 255u * ((uint32_t)v - (uint32_t)r->lo); /* 0 < num < 255 * span < 2^31 */
     if (XGO_CORE_NARROW_CPU) {
         /* The quotient is below 255: eight steps of restoring division give
          * it exactly, with no divide call on cores without a divider
@@ -49,6 +41,18 @@ uint8_t xgo_range_to_byte(const xgo_range_t *r, int32_t v)
         return (uint8_t)q;
     }
     return (uint8_t)(num / span);
+}
+
+uint8_t xgo_range_to_byte(const xgo_range_t *r, int32_t v)
+{
+    if (r->hi <= r->lo || v <= r->lo) {
+        return 0u;
+    }
+    if (v >= r->hi) {
+        return 255u;
+    }
+    /* 0 < num < 255 * span < 2^31 */
+    return byte_quotient(255u * ((uint32_t)v - (uint32_t)r->lo), span_of(r));
 }
 
 /* n / 255; on a core without a divider as a multiply by ceil(2^39 / 255)
@@ -117,19 +121,16 @@ void xgo_joints_to_bytes(const xgo_profile_t *p, const int32_t q_mdeg[XGO_LEG_CO
     }
 }
 
-/* xgo_range_to_byte(r, v), given a guess: the byte b of v is the one with
- * b * span <= 255 (v - lo) < (b + 1) * span, two multiplies to check (every
- * product < 255 * span < 2^31). A joint moves about one byte's worth per
- * tick at most, so the last byte or a neighbour is almost always right,
- * which spares the division: eight restoring steps on a core without a
- * divider (Cortex-M0); with one, the check costs more instructions than it
- * saves. Here 0 < num < 255 span, so b is in 0..254: a neighbour found by
- * the bounds is always a byte. */
-static uint8_t range_to_byte_near(const xgo_range_t *r, int32_t v, uint8_t guess)
+/* num / span (0 < num < 255 span), given a guess: the byte b with
+ * b * span <= num < (b + 1) * span, two multiplies to check (every product
+ * < 255 * span < 2^31). A joint moves about one byte's worth per tick at
+ * most, so the last byte or a neighbour is almost always right, which
+ * spares the division: eight restoring steps on a core without a divider
+ * (Cortex-M0); with one, the check costs more instructions than it saves.
+ * b is in 0..254: a neighbour found by the bounds is always a byte. */
+static uint8_t byte_quotient_near(uint32_t num, uint32_t span, uint8_t guess)
 {
-    if (XGO_CORE_NARROW_CPU && r->hi > r->lo && v > r->lo && v < r->hi) {
-        const uint32_t span = span_of(r);
-        const uint32_t num = 255u * ((uint32_t)v - (uint32_t)r->lo);
+    if (XGO_CORE_NARROW_CPU) {
         const uint32_t low = guess * span;
         if (num >= low) {
             if (num - low < span) {
@@ -142,17 +143,24 @@ static uint8_t range_to_byte_near(const xgo_range_t *r, int32_t v, uint8_t guess
             return (uint8_t)(guess - 1u);
         }
     }
-    return xgo_range_to_byte(r, v);
+    return byte_quotient(num, span);
 }
 
+/* Joint by joint (leg inner), so each range's bounds are read once: the
+ * board re-encodes the twelve joints every tick. */
 void xgo_joints_update_bytes(const xgo_profile_t *p, const int32_t q_mdeg[XGO_LEG_COUNT][XGO_JOINT_COUNT],
                              uint8_t bytes[XGO_LEG_COUNT * XGO_JOINT_COUNT])
 {
-    int leg, j;
-    for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
-        for (j = 0; j < XGO_JOINT_COUNT; ++j) {
+    unsigned leg, j;
+    for (j = 0; j < XGO_JOINT_COUNT; ++j) {
+        const int32_t lo = p->joint_mdeg[j].lo, hi = p->joint_mdeg[j].hi;
+        const uint32_t span = hi > lo ? span_of(&p->joint_mdeg[j]) : 0u;
+        for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
+            const int32_t v = q_mdeg[leg][j];
             uint8_t *b = &bytes[leg * XGO_JOINT_COUNT + j];
-            *b = range_to_byte_near(&p->joint_mdeg[j], q_mdeg[leg][j], *b);
+            *b = (span == 0u || v <= lo) ? 0u
+                 : v >= hi               ? 255u
+                                         : byte_quotient_near(255u * ((uint32_t)v - (uint32_t)lo), span, *b);
         }
     }
 }

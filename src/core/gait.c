@@ -432,6 +432,12 @@ static uint32_t fit_cadence(xgo_gait_t *g, const gait_tick_t *x)
             rate_fit = x->t->rate_max;
         }
         g->cache_rate_fit = rate_fit;
+        /* < 2^16, as the short products with it need (mul_q_u16): rate_fit
+         * is at least the slowest nominal rate (RATE(1200) >> 8 = 27962;
+         * every cap is faster), so tau <= KTAU(3, 4) / 27962 = 29491. Kept
+         * with the rate: a library division per tick less on an M0. */
+        XGO_ASSERT(x->t->k_tau / (rate_fit >> 8) < 65536u);
+        g->cache_tau_q16 = (uint16_t)(x->t->k_tau / (rate_fit >> 8));
     }
     return g->cache_rate_fit;
 }
@@ -488,11 +494,7 @@ static void pick_cadence(xgo_gait_t *g, gait_tick_t *x)
     uint32_t rate_fit;
     slew_rate_base(g, x);
     rate_fit = fit_cadence(g, x);
-    x->tau_q16 = x->t->k_tau / (rate_fit >> 8);
-    /* < 2^16, as the short products with it need (mul_q_u16): rate_fit is at
-     * least the slowest nominal rate (RATE(1200) >> 8 = 27962; every cap is
-     * faster), so tau <= KTAU(3, 4) / 27962 = 29491 */
-    XGO_ASSERT(x->tau_q16 < 65536u);
+    x->tau_q16 = g->cache_tau_q16; /* k_tau / (rate_fit >> 8), fit_cadence */
     x->rate = transient_rate(g, x, rate_fit);
     if (x->rate > rate_fit) {
         g->boosted_ticks++;

@@ -138,9 +138,11 @@ static void solve_joints(xgo_motion_t *m, const xgo_body_pose_t *pose,
 {
     if (!m->ik_cache.valid || !same_pose(&m->ik_cache.pose, pose) ||
         !same_feet(m->ik_cache.feet, feet)) {
-        m->ik_cache.pose = *pose;
-        memcpy(m->ik_cache.feet, feet, sizeof m->ik_cache.feet);
         unsigned leg;
+        m->ik_cache.pose = *pose;
+        for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
+            m->ik_cache.feet[leg] = feet[leg]; /* no memcpy call: every walking tick */
+        }
         xgo_body_rotation(pose, m->ik_cache.rot_q30);
         xgo_body_ik_rotated(m->profile, pose, m->ik_cache.rot_q30, feet, m->ik_cache.feet_leg);
         m->ik_cache.projected = 0;

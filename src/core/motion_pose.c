@@ -4,7 +4,6 @@
  * self-stabilisation (0x61), and the gait command of 0x30..0x32, 0x09,
  * 0x3C, 0x3D (docs/motion.md).
  */
-#include <string.h>
 
 #include "codec.h"
 #include "fixed.h"
@@ -159,7 +158,8 @@ static void level(const xgo_motion_t *m, xgo_body_pose_t *pose)
 void xgo_motion_gait_command(xgo_motion_t *m, const xgo_regs_t *r, xgo_gait_command_t *cmd)
 {
     decode_registers(m, r);
-    memset(cmd, 0, sizeof *cmd);
+    /* field by field, no memset call (every tick; padding is never read) */
+    cmd->step_height_um = 0;
     cmd->vx_um_s = m->decoded.velocity[0];
     cmd->vy_um_s = m->decoded.velocity[1];
     cmd->vyaw_mdeg_s = m->decoded.velocity[2];

@@ -108,6 +108,23 @@ static int32_t wrap_mdeg(int64_t a)
 #error "xgo_imu_tick keeps two turns of yaw_acc (mdeg * XGO_TICK_HZ) in an int32"
 #endif
 
+/* a32 / XGO_TICK_HZ (truncated), |a32| < 2^30. On a core without a
+ * divider as a multiply by ceil(2^32 / 500) and one correction (the
+ * estimate is the quotient or one more: u * 0.408 / 2^32 < 1 / 500), not a
+ * library division every tick. */
+static int32_t yaw_acc_mdeg(int32_t a32)
+{
+#if XGO_TICK_HZ == 500u
+    if (XGO_CORE_NARROW_CPU) {
+        const uint32_t u = a32 < 0 ? 0u - (uint32_t)a32 : (uint32_t)a32;
+        uint32_t q = (uint32_t)(xgo_umul_wide(u, 8589935u) >> 32);
+        q -= q * 500u > u ? 1u : 0u;
+        return a32 < 0 ? -(int32_t)q : (int32_t)q;
+    }
+#endif
+    return a32 / (int32_t)XGO_TICK_HZ;
+}
+
 void xgo_imu_tick(xgo_imu_t *imu, int32_t body_roll_mdeg, int32_t body_pitch_mdeg,
                   int32_t body_yaw_mdeg, int32_t yaw_rate_mdeg_s)
 {
@@ -127,7 +144,7 @@ void xgo_imu_tick(xgo_imu_t *imu, int32_t body_roll_mdeg, int32_t body_pitch_mde
         a32 += t32;
     }
     imu->yaw_acc = a32;
-    acc = a32 / (int32_t)XGO_TICK_HZ;
+    acc = yaw_acc_mdeg(a32);
     push_tick(imu);
     imu->roll_mdeg = wrap_mdeg((int64_t)body_roll_mdeg + imu->ground_roll_mdeg +
                                (imu->push_q10[0] >> 10));
