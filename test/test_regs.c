@@ -446,6 +446,31 @@ static void test_joint_registers_encode_from_any_last_byte(void)
 /* The register file keeps no counters: the board forms the block on read
  * (test_board: test_diag_block_is_formed_on_read). Here it reads 0 and
  * refuses writes. */
+/* The image stores 0x00..0x93 (XGO_REGS_STORED): a read across its end
+ * gives the stored bytes, then 0 for the unmapped addresses after them. */
+static void test_read_across_the_stored_image(void)
+{
+    const uint8_t io[4] = {1, 2, 3, 4};
+    uint8_t out[0x20];
+    size_t i;
+    TEST_ASSERT_EQUAL_UINT(0x94, XGO_REGS_STORED);
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_write(&regs, 0x90, io, sizeof io));
+    memset(out, 0xEE, sizeof out);
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_read(&regs, 0x90, sizeof out, out));
+    TEST_ASSERT_EQUAL_HEX8_ARRAY(io, out, sizeof io);
+    for (i = sizeof io; i < sizeof out; i++) {
+        TEST_ASSERT_EQUAL_HEX8(0, out[i]);
+    }
+    memset(out, 0xEE, sizeof out);
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_read(&regs, 0xA0, sizeof out, out));
+    for (i = 0; i < sizeof out; i++) {
+        TEST_ASSERT_EQUAL_HEX8(0, out[i]);
+    }
+    for (i = XGO_REGS_STORED; i < XGO_REG_DIAG; i++) {
+        TEST_ASSERT_NULL(xgo_reg_find((uint8_t)i)); /* nothing unstored but the block is mapped */
+    }
+}
+
 static void test_diag_block_is_read_only(void)
 {
     uint8_t out[4];
@@ -640,6 +665,7 @@ int main(void)
     RUN_TEST(test_one_byte_attitude_reads_are_the_byte_encoding);
     RUN_TEST(test_angle_byte_encoding_against_reference);
     RUN_TEST(test_joint_registers_encode_from_any_last_byte);
+    RUN_TEST(test_read_across_the_stored_image);
     RUN_TEST(test_diag_block_is_read_only);
     RUN_TEST(test_table_is_consistent);
     RUN_TEST(test_vendor_registers_have_their_access_and_initial_value);

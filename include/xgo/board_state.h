@@ -36,9 +36,15 @@ typedef struct xgo_regs_stats_s {
     uint32_t ignored_unmapped; /* accepted write frames with bytes for addresses the Mini lacks */
 } xgo_regs_stats_t;
 
+/* Addresses the flat image holds: every register below the diagnostic
+ * block (0x00..0x93; regs.c checks it against the table). Nothing above is
+ * stored: the block is formed from the board's counters when it is read,
+ * the rest is unmapped and reads 0 (108 bytes of RAM). */
+#define XGO_REGS_STORED 0x94u
+
 typedef struct xgo_regs_s {
-    uint8_t mem[XGO_REG_COUNT];      /* flat image; unmapped addresses stay 0 */
-    uint8_t written[XGO_REG_COUNT / 8]; /* bit per address: written since last taken */
+    uint8_t mem[XGO_REGS_STORED];    /* flat image; unmapped addresses stay 0 */
+    uint8_t written[(XGO_REGS_STORED + 7u) / 8u]; /* bit per address: written since last taken */
     char firmware[XGO_FIRMWARE_LEN]; /* NUL padded ASCII */
     int32_t attitude_mdeg[3];        /* roll, pitch, yaw in millidegrees */
     int16_t accel[3];                /* IMU block: acceleration, 16384 = 1 g */

@@ -40,11 +40,13 @@ xgo_drop_reason_t xgo_regs_write(xgo_regs_t *r, uint8_t addr, const uint8_t *dat
  * XGO_DROP_NONE, or XGO_DROP_BAD_RANGE for n == 0, n > 247 or addr + n > 256. */
 xgo_drop_reason_t xgo_regs_read(const xgo_regs_t *r, uint8_t addr, size_t n, uint8_t *out);
 
-/* Board-side access: no validation, no counting. */
+/* Board-side access: no validation, no counting; addr below
+ * XGO_REGS_STORED (the diagnostic block is the board's, formed on read). */
 uint8_t xgo_regs_get(const xgo_regs_t *r, uint8_t addr);
 void xgo_regs_set(xgo_regs_t *r, uint8_t addr, uint8_t value);
 
-/* True (once) if the host wrote addr since the last call for it. */
+/* True (once) if the host wrote addr (< XGO_REGS_STORED: nothing above is
+ * writable) since the last call for it. */
 int xgo_regs_take_written(xgo_regs_t *r, uint8_t addr);
 /* The same without consuming the flag. */
 int xgo_regs_was_written(const xgo_regs_t *r, uint8_t addr);

@@ -74,6 +74,17 @@ enum {
 #undef REG_WIDTH_OR_
 };
 
+/* Every row but the diagnostic block lies in the stored image
+ * (XGO_REGS_STORED, xgo/board_state.h). */
+#define REG_STORED_(id, a, w, acc, fl, init, v, l, h, nm)                                      \
+    typedef char xgo_reg_stored_##id##_[(XGO_REG_##id == XGO_REG_DIAG ||                       \
+                                         (unsigned)(a) + (unsigned)(w) <= XGO_REGS_STORED)      \
+                                            ? 1                                                 \
+                                            : -1];
+XGO_REG_LIST(REG_STORED_)
+#undef REG_STORED_
+typedef char xgo_regs_diag_above_stored_[XGO_REG_DIAG >= XGO_REGS_STORED ? 1 : -1];
+
 /* Where each row starts, a constant in flash rather than a per-address map
  * in every board's RAM: k_start[addr] = row + 1 for rows on every model or
  * on the models without the arm, k_start[XGO_REG_COUNT + addr] for the
@@ -178,6 +189,7 @@ int xgo_regs_take_any_written(xgo_regs_t *r)
 
 int xgo_regs_was_written(const xgo_regs_t *r, uint8_t addr)
 {
+    XGO_ASSERT(addr < XGO_REGS_STORED);
     return (r->written[addr >> 3] >> (addr & 7u)) & 1u;
 }
 
@@ -185,6 +197,7 @@ int xgo_regs_take_written(xgo_regs_t *r, uint8_t addr)
 {
     const uint8_t bit = (uint8_t)(1u << (addr & 7u));
     const int was = (r->written[addr >> 3] & bit) != 0;
+    XGO_ASSERT(addr < XGO_REGS_STORED);
     r->written[addr >> 3] = (uint8_t)(r->written[addr >> 3] & ~bit);
     return was;
 }
@@ -270,7 +283,7 @@ void xgo_regs_init(xgo_regs_t *r, const char *firmware, uint8_t version)
         r->firmware[i] = firmware[i];
     }
     load_initial(r, 1);
-    for (i = 0; i < XGO_REG_COUNT; i++) {
+    for (i = 0; i < XGO_REGS_STORED; i++) {
         const xgo_reg_desc_t *d = desc_at(r, (unsigned)i);
         if (d != NULL && d->access == XGO_ACCESS_R && (d->flags & XGO_REGF_COMPUTED) == 0) {
             r->mem[i] = d->initial;
@@ -290,11 +303,13 @@ void xgo_regs_restore_initial(xgo_regs_t *r)
 
 uint8_t xgo_regs_get(const xgo_regs_t *r, uint8_t addr)
 {
+    XGO_ASSERT(addr < XGO_REGS_STORED);
     return r->mem[addr];
 }
 
 void xgo_regs_set(xgo_regs_t *r, uint8_t addr, uint8_t value)
 {
+    XGO_ASSERT(addr < XGO_REGS_STORED);
     r->mem[addr] = value;
 }
 
@@ -472,7 +487,14 @@ xgo_drop_reason_t xgo_regs_read(const xgo_regs_t *r, uint8_t addr, size_t n, uin
     if (n == 0 || n > XGO_FRAME_MAX_DATA || (size_t)addr + n > XGO_REG_COUNT) {
         return XGO_DROP_BAD_RANGE;
     }
-    memcpy(out, &r->mem[addr], n);
+    if (addr < XGO_REGS_STORED) {
+        const size_t stored = XGO_REGS_STORED - (size_t)addr;
+        memcpy(out, &r->mem[addr], n < stored ? n : stored);
+    }
+    if ((size_t)addr + n > XGO_REGS_STORED) { /* not stored: reads 0 (the board forms the diagnostic block) */
+        const size_t from = addr < XGO_REGS_STORED ? XGO_REGS_STORED - (size_t)addr : 0u;
+        memset(&out[from], 0, n - from);
+    }
     apply_read_views(r, addr, n, out);
     return XGO_DROP_NONE;
 }
