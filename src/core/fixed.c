@@ -231,7 +231,7 @@ uint32_t xgo_sqrt64_near(uint64_t x)
         return xgo_isqrt32((uint32_t)x);
     }
     s = xgo_clz32(hi) & ~1u;
-    x <<= s; /* [2^62, 2^64) */
+    x = xgo_shl64(x, s); /* [2^62, 2^64) */
     hi = (uint32_t)(x >> 32);
     lo = (uint32_t)x;
     y0 = sqrt_chord32(hi);
@@ -632,16 +632,13 @@ xgo_bam_t xgo_atan2_64(int64_t y, int64_t x)
     const unsigned bits = xgo_bit_length(ux | uy);
     const int swap = uy > ux;
     unsigned k;
-    uint64_t half;
     if (bits <= 32u) {
         return atan2_u32((uint32_t)ux, (uint32_t)uy, x < 0, y < 0);
     }
-    /* round(v / 2^k) to 25 bits: v + 2^(k-1) < 2^63 + 2^38 cannot overflow */
+    /* round(v / 2^k) to 25 bits (the larger may round up to 2^25) */
     k = bits - 25u;
-    half = (uint64_t)1 << (k - 1u);
-    return fold(atan_octant((uint32_t)(((swap ? uy : ux) + half) >> k),
-                            (uint32_t)(((swap ? ux : uy) + half) >> k)),
-                swap, x < 0, y < 0);
+    return fold(atan_octant(xgo_round_shr64(swap ? uy : ux, k), xgo_round_shr64(swap ? ux : uy, k)), swap,
+                x < 0, y < 0);
 }
 
 /* ------------------------------------------------------------ asin / acos */

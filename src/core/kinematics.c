@@ -46,7 +46,7 @@ static int64_t mul_cold(int32_t a, int32_t b)
 
 /* v^2: on a Cortex-M0 the unsigned product of |v| (no sign fix-ups),
  * elsewhere one multiply; the same value. */
-static int64_t square_wide(int32_t v)
+XGO_ALWAYS_INLINE int64_t square_wide(int32_t v)
 {
 #if XGO_CORE_NARROW_CPU
     const uint32_t u = v < 0 ? 0u - (uint32_t)v : (uint32_t)v;
@@ -109,6 +109,7 @@ typedef struct planar_s {
     int32_t l1, l2;     /* q4 */
     int64_t sum_sq;     /* l1^2 + l2^2 */
     int64_t two_l1l2;   /* 2 l1 l2, and the shift that cuts it to 30 bits */
+    int64_t d_sq;       /* abad_offset_um^2 */
     unsigned d_shift;
     const xgo_profile_t *p;
     xgo_bam_t knee_off; /* g = x1 + knee_off */
@@ -267,13 +268,8 @@ static int planar_ik(planar_t *pl, int32_t x, int32_t h, leg_solution_t *s)
         int64_t b = xgo_mul_wide(pl->l1, dn) + xgo_mul_wide(pl->l2, nn);
         uint64_t m = (uint64_t)a | (uint64_t)(b < 0 ? -b : b);
         unsigned kk = xgo_bit_length(m);
-        int32_t a30, b30;
-        if (kk > 30u) {
-            a >>= kk - 30u;
-            b >>= kk - 30u;
-        }
-        a30 = (int32_t)a;
-        b30 = (int32_t)b;
+        const unsigned cut = kk > 30u ? kk - 30u : 0u;
+        const int32_t a30 = xgo_shr64_to32(a, cut), b30 = xgo_shr64_to32(b, cut);
         s->t2 = xgo_atan2_64(xgo_mul_wide(h, a30) - xgo_mul_wide(x, b30),
                              xgo_mul_wide(h, b30) + xgo_mul_wide(x, a30)); /* |terms| < 2^56 */
     }
@@ -310,6 +306,17 @@ static void fk_bam(const xgo_profile_t *p, int side_y, xgo_bam_t phi, xgo_bam_t 
     foot_um->z = (int32_t)round_shift(z34, 34);
 }
 
+/* The abduction angle that puts (wp, z) (um) at h (q4) in the leg plane:
+ * (wp, z) is the plane point (d, h) turned by phi,
+ *   wp = d cos phi + h sin phi,  z = -d sin phi + h cos phi,
+ * so cos phi ~ d wp + h z and sin phi ~ h wp - d z (all in q4). */
+static xgo_bam_t branch_phi(const planar_t *pl, int32_t wp, int32_t z, int32_t h)
+{
+    const int32_t d4 = pl->p->abad_offset_um * Q4_ONE, wp4 = wp * Q4_ONE, z4 = z * Q4_ONE;
+    return xgo_atan2_64(xgo_mul_wide(h, wp4) - xgo_mul_wide(d4, z4),
+                        xgo_mul_wide(d4, wp4) + xgo_mul_wide(h, z4)); /* |terms| < 2^51 */
+}
+
 /* One branch of the abduction solution: the foot at h = branch * |h| in the
  * leg plane (branch +1: at or below the thigh joint, -1: above it). All
  * values in q4 are below 2^26, so every product is 32 x 32 bits. */
@@ -317,14 +324,9 @@ static void solve_branch(planar_t *pl, int32_t xq, int32_t wp, int32_t z, int32_
                          leg_solution_t *s)
 {
     const xgo_range_t *ar = &pl->p->joint_mdeg[XGO_JOINT_ABAD];
-    const int32_t d4 = pl->p->abad_offset_um * Q4_ONE, wp4 = wp * Q4_ONE, z4 = z * Q4_ONE;
     int32_t h = branch > 0 ? h_abs : -h_abs;
     s->projected = 0;
-    /* (wp, z) is the plane point (d, h) turned by phi:
-     *   wp = d cos phi + h sin phi,  z = -d sin phi + h cos phi
-     * so cos phi ~ d wp + h z and sin phi ~ h wp - d z (all in q4). */
-    s->phi = xgo_atan2_64(xgo_mul_wide(h, wp4) - xgo_mul_wide(d4, z4),
-                          xgo_mul_wide(d4, wp4) + xgo_mul_wide(h, z4)); /* |terms| < 2^51 */
+    s->phi = branch_phi(pl, wp, z, h);
     if (!joint_in(pl, XGO_JOINT_ABAD, s->phi, &s->q[XGO_JOINT_ABAD])) {
         /* clamp, then project the target onto that leg plane */
         xgo_q30_t sp, cp;
@@ -347,22 +349,39 @@ static int64_t dist2_um(const xgo_vec3_t *a, int32_t x, int32_t y, int32_t z)
     return dx * dx + dy * dy + dz * dz; /* all within ~2^21: fits */
 }
 
-/* Both branches projected: whether the upper one's foot lands nearer the
- * target (the target as given: a far one scaled down points the same way). */
-XGO_OWN_FRAME static int upper_lands_nearer(const xgo_profile_t *p, int side, const leg_solution_t *below,
-                                        const leg_solution_t *above, const xgo_vec3_t *target)
+/* Squared distance (um^2) of a branch's foot from the target (x, y, z),
+ * the target as given: a far one scaled down points the same way. */
+XGO_OWN_FRAME static int64_t miss2(const xgo_profile_t *p, int side, const leg_solution_t *s, int32_t x,
+                                   int32_t y, int32_t z)
 {
-    xgo_vec3_t fb, fa;
-    int32_t x = target->x, y = target->y, z = target->z;
-    while (x > FAR_LIMIT_UM || x < -FAR_LIMIT_UM || y > FAR_LIMIT_UM || y < -FAR_LIMIT_UM ||
-           z > FAR_LIMIT_UM || z < -FAR_LIMIT_UM) {
-        x /= 2;
-        y /= 2;
-        z /= 2;
+    xgo_vec3_t f;
+    fk_bam(p, side, s->phi, s->g, s->t2, &f);
+    return dist2_um(&f, x, y, z);
+}
+
+/* The lower branch is projected: whether the upper one may land nearer.
+ * Where the upper branch's abduction is past a limit, its foot lies in the
+ * leg plane at that limit, wp cos phi - z sin phi = d, at least the
+ * target's distance from that plane away: when that exceeds the lower
+ * foot's miss by more than both feet's rounding (FK within 1 um of the
+ * exact foot, each coordinate rounded), the upper one cannot win the
+ * comparison below and is not solved. Sets *miss2_below when it worked it
+ * out (else leaves it negative). */
+XGO_OWN_FRAME static int upper_may_win(const planar_t *pl, int side, const leg_solution_t *below, int32_t wp,
+                                       int32_t z, int32_t h_abs, int32_t x_um, int32_t y_um,
+                                       int64_t *miss2_below)
+{
+    const xgo_range_t *ar = &pl->p->joint_mdeg[XGO_JOINT_ABAD];
+    int32_t q, off;
+    xgo_q30_t sp, cp;
+    if (joint_in(pl, XGO_JOINT_ABAD, branch_phi(pl, wp, z, -h_abs), &q)) {
+        return 1;
     }
-    fk_bam(p, side, below->phi, below->g, below->t2, &fb);
-    fk_bam(p, side, above->phi, above->g, above->t2, &fa);
-    return dist2_um(&fa, x, y, z) < dist2_um(&fb, x, y, z);
+    xgo_sincos(xgo_mdeg_to_bam(q < ar->lo ? ar->lo : ar->hi), &sp, &cp);
+    off = (int32_t)round_shift(mul_cold(wp, cp) - mul_cold(z, sp), 30) - pl->p->abad_offset_um;
+    off = (off < 0 ? -off : off) - 8; /* the margin: 2 um is enough */
+    *miss2_below = miss2(pl->p, side, below, x_um, y_um, z);
+    return off <= 0 || square_wide(off) <= *miss2_below;
 }
 
 static void planar_init(planar_t *pl, const xgo_profile_t *p)
@@ -375,6 +394,7 @@ static void planar_init(planar_t *pl, const xgo_profile_t *p)
     pl->two_l1l2 = 2 * xgo_mul_wide(pl->l1, pl->l2);
     pl->d_shift = xgo_bit_length((uint64_t)pl->two_l1l2);
     pl->d_shift = pl->d_shift > 30u ? pl->d_shift - 30u : 0u;
+    pl->d_sq = square_wide(p->abad_offset_um);
     pl->arcs_ready = 0;
 }
 
@@ -383,10 +403,11 @@ static int32_t clamp_joint(const xgo_profile_t *p, unsigned joint, int32_t v)
     return clamp_i32(v, p->joint_mdeg[joint].lo, p->joint_mdeg[joint].hi);
 }
 
-int xgo_leg_ik(const xgo_profile_t *p, xgo_leg_t leg, const xgo_vec3_t *foot_um,
-               int32_t q_mdeg[XGO_JOINT_COUNT])
+/* The leg IK with the profile's constants in pl (shared by the legs of one
+ * call of xgo_legs_ik, and the limit arcs with them). */
+static int leg_ik_in(planar_t *pl, xgo_leg_t leg, const xgo_vec3_t *foot_um, int32_t q_mdeg[XGO_JOINT_COUNT])
 {
-    planar_t pl;
+    const xgo_profile_t *p = pl->p;
     int32_t x = foot_um->x, y = foot_um->y, z = foot_um->z;
     const int32_t d = p->abad_offset_um;
     const int side = xgo_leg_side_y(leg);
@@ -403,20 +424,20 @@ int xgo_leg_ik(const xgo_profile_t *p, xgo_leg_t leg, const xgo_vec3_t *foot_um,
         y /= 2;
         z /= 2;
     }
-    planar_init(&pl, p);
 
     /* Across the abduction axis: wp is the target's outward distance from
      * the axis, h its distance along the leg plane (Pythagoras with d). A
      * target closer to the axis than d is in no leg plane (h = 0 then). */
     wp = (side > 0 ? y : -y) + d; /* |wp| <= 2^21 */
-    h2 = square_wide(wp) + square_wide(z) - square_wide(d);
+    h2 = square_wide(wp) + square_wide(z) - pl->d_sq;
     inside_axis_cylinder = h2 < 0;
     h_abs = h2 > 0 ? (int32_t)sqrt64_round_near((uint64_t)h2 << (2 * Q4_SHIFT)) : 0; /* q4, < 2^26 */
 
     /* Two solutions: foot below the thigh joint's level in the leg plane
      * (the normal one), or above it. Take the first that reaches the target
-     * within every limit; if neither does, the one landing nearer. */
-    solve_branch(&pl, x * Q4_ONE, wp, z, h_abs, 1, &below);
+     * within every limit; if neither does, the one landing nearer (the
+     * upper one only solved when it may). */
+    solve_branch(pl, x * Q4_ONE, wp, z, h_abs, 1, &below);
     if (!below.projected && !inside_axis_cylinder) { /* within every limit already */
         q_mdeg[XGO_JOINT_KNEE] = below.q[XGO_JOINT_KNEE];
         q_mdeg[XGO_JOINT_HIP] = below.q[XGO_JOINT_HIP];
@@ -424,12 +445,18 @@ int xgo_leg_ik(const xgo_profile_t *p, xgo_leg_t leg, const xgo_vec3_t *foot_um,
         return XGO_IK_REACHED;
     }
     if (below.projected && h_abs > 0) {
-        solve_branch(&pl, x * Q4_ONE, wp, z, h_abs, -1, &above);
-        if (!above.projected) {
-            sol = &above;
-        } else {
-            if (upper_lands_nearer(p, side, &below, &above, foot_um)) {
+        int64_t below2 = -1;
+        if (upper_may_win(pl, side, &below, wp, z, h_abs, x, y, &below2)) {
+            solve_branch(pl, x * Q4_ONE, wp, z, h_abs, -1, &above);
+            if (!above.projected) {
                 sol = &above;
+            } else {
+                if (below2 < 0) {
+                    below2 = miss2(p, side, &below, x, y, z);
+                }
+                if (miss2(p, side, &above, x, y, z) < below2) {
+                    sol = &above;
+                }
             }
         }
     }
@@ -437,6 +464,29 @@ int xgo_leg_ik(const xgo_profile_t *p, xgo_leg_t leg, const xgo_vec3_t *foot_um,
     q_mdeg[XGO_JOINT_HIP] = clamp_joint(p, XGO_JOINT_HIP, sol->q[XGO_JOINT_HIP]);
     q_mdeg[XGO_JOINT_ABAD] = clamp_joint(p, XGO_JOINT_ABAD, sol->q[XGO_JOINT_ABAD]);
     return (sol->projected || inside_axis_cylinder) ? XGO_IK_PROJECTED : XGO_IK_REACHED;
+}
+
+int xgo_leg_ik(const xgo_profile_t *p, xgo_leg_t leg, const xgo_vec3_t *foot_um,
+               int32_t q_mdeg[XGO_JOINT_COUNT])
+{
+    planar_t pl;
+    planar_init(&pl, p);
+    return leg_ik_in(&pl, leg, foot_um, q_mdeg);
+}
+
+unsigned xgo_legs_ik(const xgo_profile_t *p, const xgo_vec3_t feet_leg_um[XGO_LEG_COUNT],
+                     int32_t q_mdeg[XGO_LEG_COUNT][XGO_JOINT_COUNT])
+{
+    planar_t pl;
+    unsigned mask = 0;
+    int leg;
+    planar_init(&pl, p);
+    for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
+        if (leg_ik_in(&pl, (xgo_leg_t)leg, &feet_leg_um[leg], q_mdeg[leg]) != XGO_IK_REACHED) {
+            mask |= 1u << leg;
+        }
+    }
+    return mask;
 }
 
 void xgo_leg_fk(const xgo_profile_t *p, xgo_leg_t leg, const int32_t q_mdeg[XGO_JOINT_COUNT],
@@ -621,15 +671,8 @@ unsigned xgo_body_to_joints(const xgo_profile_t *p, const xgo_body_pose_t *pose,
                             int32_t q_mdeg[XGO_LEG_COUNT][XGO_JOINT_COUNT])
 {
     xgo_vec3_t feet_leg[XGO_LEG_COUNT];
-    unsigned mask = 0;
-    int leg;
     xgo_body_ik(p, pose, feet_machine_um, feet_leg);
-    for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
-        if (xgo_leg_ik(p, (xgo_leg_t)leg, &feet_leg[leg], q_mdeg[leg]) != XGO_IK_REACHED) {
-            mask |= 1u << leg;
-        }
-    }
-    return mask;
+    return xgo_legs_ik(p, feet_leg, q_mdeg);
 }
 
 void xgo_stance_feet(const xgo_profile_t *p, xgo_vec3_t feet_machine_um[XGO_LEG_COUNT])

@@ -68,6 +68,12 @@ extern "C" {
 int xgo_leg_ik(const xgo_profile_t *p, xgo_leg_t leg, const xgo_vec3_t *foot_um,
                int32_t q_mdeg[XGO_JOINT_COUNT]);
 
+/* xgo_leg_ik for the four legs (feet in their leg frames): the profile's
+ * constants worked out once. Returns a bit mask of the legs whose target
+ * was projected (bit n = leg index n); 0 when all reached. */
+unsigned xgo_legs_ik(const xgo_profile_t *p, const xgo_vec3_t feet_leg_um[XGO_LEG_COUNT],
+                     int32_t q_mdeg[XGO_LEG_COUNT][XGO_JOINT_COUNT]);
+
 /* Joint angles -> foot position in the leg frame (um). Any angles (limits
  * are not applied). */
 void xgo_leg_fk(const xgo_profile_t *p, xgo_leg_t leg, const int32_t q_mdeg[XGO_JOINT_COUNT],

@@ -145,13 +145,8 @@ static void solve_joints(xgo_motion_t *m, const xgo_body_pose_t *pose,
         }
         xgo_body_rotation(pose, m->ik_cache.rot_q30);
         xgo_body_ik_rotated(m->profile, pose, m->ik_cache.rot_q30, feet, m->ik_cache.feet_leg);
-        m->ik_cache.projected = 0;
-        for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
-            if (xgo_leg_ik(m->profile, (xgo_leg_t)leg, &m->ik_cache.feet_leg[leg],
-                           &m->ik_cache.q_mdeg[XGO_JOINT_COUNT * leg]) != XGO_IK_REACHED) {
-                m->ik_cache.projected |= (uint8_t)(1u << leg);
-            }
-        }
+        m->ik_cache.projected = (uint8_t)xgo_legs_ik(m->profile, m->ik_cache.feet_leg,
+                                                     (int32_t(*)[XGO_JOINT_COUNT])m->ik_cache.q_mdeg);
         m->ik_cache.valid = 1;
     }
 }

@@ -90,4 +90,57 @@ XGO_ALWAYS_INLINE int64_t xgo_mul_wide(int32_t a, int32_t b)
 
 #endif
 
+/* Variable shifts of 64-bit values are libgcc calls on a Cortex-M0
+ * (__aeabi_llsl/llsr/lasr, about 12 instructions plus the call); where the
+ * result fits 32 bits the two halves do it inline. Elsewhere the plain
+ * shift. The same value either way. */
+
+/* round(v / 2^k) (ties up) for 1 <= k <= 63 when it fits 32 bits:
+ * floor(v / 2^k) plus bit k - 1 of v (no 64-bit add). */
+XGO_ALWAYS_INLINE uint32_t xgo_round_shr64(uint64_t v, unsigned k)
+{
+#if XGO_CORE_NARROW_CPU
+    const uint32_t hi = (uint32_t)(v >> 32), lo = (uint32_t)v;
+    if (k >= 32u) {
+        return (hi >> (k - 32u)) + (k == 32u ? lo >> 31 : (hi >> (k - 33u)) & 1u);
+    }
+    return ((hi << (32u - k)) | (lo >> k)) + ((lo >> (k - 1u)) & 1u);
+#else
+    return (uint32_t)((v + ((uint64_t)1 << (k - 1u))) >> k);
+#endif
+}
+
+/* floor(v / 2^k) for 0 <= k <= 63 when it fits int32 (an arithmetic
+ * shift: the low 32 bits of v >> k). */
+XGO_ALWAYS_INLINE int32_t xgo_shr64_to32(int64_t v, unsigned k)
+{
+#if XGO_CORE_NARROW_CPU
+    const uint32_t lo = (uint32_t)(uint64_t)v;
+    const int32_t hi = (int32_t)(v >> 32);
+    if (k >= 32u) {
+        return hi >> (k - 32u);
+    }
+    if (k == 0u) {
+        return (int32_t)lo;
+    }
+    return (int32_t)((lo >> k) | ((uint32_t)hi << (32u - k)));
+#else
+    return (int32_t)(v >> k);
+#endif
+}
+
+/* v << k for 0 <= k <= 31 when v << k fits 64 bits. */
+XGO_ALWAYS_INLINE uint64_t xgo_shl64(uint64_t v, unsigned k)
+{
+#if XGO_CORE_NARROW_CPU
+    const uint32_t hi = (uint32_t)(v >> 32), lo = (uint32_t)v;
+    if (k == 0u) {
+        return v;
+    }
+    return ((uint64_t)((hi << k) | (lo >> (32u - k))) << 32) | (uint32_t)(lo << k);
+#else
+    return v << k;
+#endif
+}
+
 #endif /* XGO_CORE_WIDE_H */
