@@ -320,23 +320,25 @@ static void gait_command(xgo_motion_t *m, const xgo_regs_t *r, xgo_gait_command_
  * (the last one kept). */
 static XGO_OWN_FRAME void update_stroke(xgo_motion_t *m, const xgo_gait_command_t *cmd)
 {
-    xgo_gait_command_t c = *cmd;
-    int32_t key[6];
-    if (xgo_heading_active(&m->heading)) {
-        c.vyaw_mdeg_s = XGO_HEADING_RATE_MDEG_S;
-    }
-    key[0] = c.vx_um_s;
-    key[1] = c.vy_um_s;
-    key[2] = c.vyaw_mdeg_s;
-    key[3] = c.mark_time_um;
-    key[4] = c.type | (c.pace << 8);
-    key[5] = m->stroke_key[5];
-    if (!same_words(key, m->stroke_key, 5)) {
+    const int32_t vyaw = xgo_heading_active(&m->heading) ? XGO_HEADING_RATE_MDEG_S : cmd->vyaw_mdeg_s;
+    const int32_t kind = cmd->type | (cmd->pace << 8);
+    int32_t *key = m->stroke_key;
+    const int same_command = key[0] == cmd->vx_um_s && key[1] == cmd->vy_um_s && key[2] == vyaw &&
+                             key[3] == cmd->mark_time_um && key[4] == kind;
+    if (!same_command) {
         m->stroke_margin_um = 0; /* a new command: nothing learnt yet */
     }
-    key[5] = m->stroke_margin_um;
-    if (!same_words(key, m->stroke_key, 6)) {
-        memcpy(m->stroke_key, key, sizeof key);
+    /* compared in place, the command copied only when it changed (every
+     * tick otherwise) */
+    if (!same_command || key[5] != m->stroke_margin_um) {
+        xgo_gait_command_t c = *cmd;
+        c.vyaw_mdeg_s = vyaw;
+        key[0] = c.vx_um_s;
+        key[1] = c.vy_um_s;
+        key[2] = vyaw;
+        key[3] = c.mark_time_um;
+        key[4] = kind;
+        key[5] = m->stroke_margin_um;
         m->stroke_walks = (uint8_t)xgo_motion_stroke(m, &c, m->stroke);
     }
     if (m->stroke_walks) {
@@ -634,6 +636,26 @@ static void enter_mode(xgo_motion_t *m, uint8_t was)
     }
 }
 
+/* After the servos moved: the feet measured, the sensors, the battery, the
+ * registers published. Out of line: its locals are not on the stack while
+ * the tick goes deep (the reach search). */
+static XGO_OWN_FRAME void sense(xgo_motion_t *m, xgo_regs_t *r, int contact_known, int32_t yaw_rate,
+                                int busy, int pose_clamped)
+{
+    measure_feet(m, contact_known);
+    xgo_imu_tick(&m->imu, m->pose.roll_mdeg, m->pose.pitch_mdeg, m->pose.yaw_mdeg, yaw_rate);
+    inertial_tick(m);
+    xgo_arm_tick(&m->arm, r, &m->pose, &m->stand);
+    if (pose_clamped || m->arm.out_of_reach) {
+        m->reach_clamped_ticks++; /* the board holds the nearest pose it can, not the one asked */
+    }
+    xgo_battery_tick(&m->battery, busy);
+    if (m->mode == XGO_MODE_ACTION && m->action_id == 0) {
+        m->mode = m->group_mode;
+    }
+    xgo_motion_publish(m, r);
+}
+
 void xgo_motion_tick(xgo_motion_t *m, xgo_regs_t *r)
 {
     const uint32_t clamped_before = m->clamped_pose_ticks;
@@ -671,16 +693,5 @@ void xgo_motion_tick(xgo_motion_t *m, xgo_regs_t *r)
     if (q != NULL) {
         xgo_servos_follow(&m->servos, q, step);
     }
-    measure_feet(m, contact_known);
-    xgo_imu_tick(&m->imu, m->pose.roll_mdeg, m->pose.pitch_mdeg, m->pose.yaw_mdeg, yaw_rate);
-    inertial_tick(m);
-    xgo_arm_tick(&m->arm, r, &m->pose, &m->stand);
-    if (m->clamped_pose_ticks != clamped_before || m->arm.out_of_reach) {
-        m->reach_clamped_ticks++; /* the board holds the nearest pose it can, not the one asked */
-    }
-    xgo_battery_tick(&m->battery, busy);
-    if (m->mode == XGO_MODE_ACTION && m->action_id == 0) {
-        m->mode = m->group_mode;
-    }
-    xgo_motion_publish(m, r);
+    sense(m, r, contact_known, yaw_rate, busy, m->clamped_pose_ticks != clamped_before);
 }
