@@ -103,6 +103,22 @@ static uint32_t sqrt64_round_near(uint64_t v)
     return (xgo_sqrt64_near(v << 2) + 1u) >> 1;
 }
 
+/* (a + ib)(c + id), every factor and a + b, c + d, d - c within int32 and
+ * the products within int64. On a Cortex-M0 three wide products instead of
+ * four (Karatsuba: a wide product is four MULS and carries there),
+ * elsewhere four single multiplies; the same exact value. */
+static void complex_mul(int32_t a, int32_t b, int32_t c, int32_t d, int64_t *re, int64_t *im)
+{
+#if XGO_CORE_NARROW_CPU
+    const int64_t k1 = xgo_mul_wide(c, a + b), k2 = xgo_mul_wide(a, d - c), k3 = xgo_mul_wide(b, c + d);
+    *re = k1 - k3;
+    *im = k1 + k2;
+#else
+    *re = xgo_mul_wide(a, c) - xgo_mul_wide(b, d);
+    *im = xgo_mul_wide(a, d) + xgo_mul_wide(b, c);
+#endif
+}
+
 /* ------------------------------------------------------------ planar IK */
 
 typedef struct planar_s {
@@ -253,8 +269,8 @@ static int planar_ik(planar_t *pl, int32_t x, int32_t h, leg_solution_t *s)
     }
     /* sin g = n / d, cos g = sqrt((d - n)(d + n)) / d; n and d scaled to
      * 30 bits so the product fits 64 bits (relative precision 2^-30). */
-    dn = (int32_t)(d >> pl->d_shift);
-    nn = (int32_t)(n >> pl->d_shift);
+    dn = xgo_shr64_to32(d, pl->d_shift);
+    nn = xgo_shr64_to32(n, pl->d_shift);
     nn = nn > dn ? dn : (nn < -dn ? -dn : nn);
     cn = sqrt64_round_near(xgo_umul_wide((uint32_t)(dn - nn), (uint32_t)(dn + nn))); /* < 2^30 */
     s->g = xgo_atan2_len30(nn, (int32_t)cn); /* |(nn, cn)| = dn in [2^29, 2^30) */
@@ -270,8 +286,9 @@ static int planar_ik(planar_t *pl, int32_t x, int32_t h, leg_solution_t *s)
         unsigned kk = xgo_bit_length(m);
         const unsigned cut = kk > 30u ? kk - 30u : 0u;
         const int32_t a30 = xgo_shr64_to32(a, cut), b30 = xgo_shr64_to32(b, cut);
-        s->t2 = xgo_atan2_64(xgo_mul_wide(h, a30) - xgo_mul_wide(x, b30),
-                             xgo_mul_wide(h, b30) + xgo_mul_wide(x, a30)); /* |terms| < 2^56 */
+        int64_t im, re;
+        complex_mul(h, -x, b30, a30, &re, &im); /* |terms| < 2^57 */
+        s->t2 = xgo_atan2_64(im, re);
     }
     if (!joint_in(pl, XGO_JOINT_KNEE, s->g - pl->knee_off, &s->q[XGO_JOINT_KNEE]) ||
         !joint_in(pl, XGO_JOINT_HIP, s->t2, &s->q[XGO_JOINT_HIP])) {
@@ -313,8 +330,9 @@ static void fk_bam(const xgo_profile_t *p, int side_y, xgo_bam_t phi, xgo_bam_t 
 static xgo_bam_t branch_phi(const planar_t *pl, int32_t wp, int32_t z, int32_t h)
 {
     const int32_t d4 = pl->p->abad_offset_um * Q4_ONE, wp4 = wp * Q4_ONE, z4 = z * Q4_ONE;
-    return xgo_atan2_64(xgo_mul_wide(h, wp4) - xgo_mul_wide(d4, z4),
-                        xgo_mul_wide(d4, wp4) + xgo_mul_wide(h, z4)); /* |terms| < 2^51 */
+    int64_t re, im;
+    complex_mul(wp4, z4, d4, -h, &re, &im); /* (wp + iz)(d - ih): |terms| < 2^52 */
+    return xgo_atan2_64(-im, re);
 }
 
 /* One branch of the abduction solution: the foot at h = branch * |h| in the
@@ -499,15 +517,34 @@ void xgo_leg_fk(const xgo_profile_t *p, xgo_leg_t leg, const int32_t q_mdeg[XGO_
 
 /* ------------------------------------------------------------ body IK */
 
+/* Products of Q30 values |a|, |b| <= 2^30 (sines, cosines and their
+ * products), rounded. On a Cortex-M0 in 15-bit pieces (a = ah 2^15 + al,
+ * 0 <= al < 2^15): ab = ah bh 2^30 + (ah bl + al bh) 2^15 + al bl, each
+ * piece one MULS within int32, the floors nested exactly; elsewhere one
+ * 64-bit product. The same value. */
 static int32_t mul30(int32_t a, int32_t b)
 {
+#if XGO_CORE_NARROW_CPU
+    const int32_t ah = a >> 15, al = a & 0x7FFF, bh = b >> 15, bl = b & 0x7FFF;
+    return ah * bh + ((ah * bl + al * bh + ((al * bl) >> 15) + (1 << 14)) >> 15);
+#else
     return (int32_t)round_shift(xgo_mul_wide(a, b), 30);
+#endif
 }
 
 /* a*b + c*d in Q30, clamped to [-1, 1] (rounding may push |x| past 1). */
 static int32_t dot30(int32_t a, int32_t b, int32_t c, int32_t d)
 {
-    int64_t v = round_shift(xgo_mul_wide(a, b) + xgo_mul_wide(c, d), 30);
+#if XGO_CORE_NARROW_CPU
+    const int32_t ah = a >> 15, al = a & 0x7FFF, bh = b >> 15, bl = b & 0x7FFF;
+    const int32_t ch = c >> 15, cl = c & 0x7FFF, dh = d >> 15, dl = d & 0x7FFF;
+    const int32_t m1 = ah * bl + al * bh, m2 = ch * dl + cl * dh; /* each within +-2^31 */
+    const uint32_t lo = ((uint32_t)(al * bl) + (uint32_t)(cl * dl) + (1u << 29)) >> 15; /* < 2^17 */
+    const int32_t v = ah * bh + ch * dh + (m1 >> 15) + (m2 >> 15) +
+                      (((m1 & 0x7FFF) + (m2 & 0x7FFF) + (int32_t)lo) >> 15);
+#else
+    const int64_t v = round_shift(xgo_mul_wide(a, b) + xgo_mul_wide(c, d), 30);
+#endif
     return v > XGO_Q30_ONE ? XGO_Q30_ONE : (v < -XGO_Q30_ONE ? -XGO_Q30_ONE : (int32_t)v);
 }
 
