@@ -174,11 +174,13 @@ typedef struct xgo_battery_s {
 } xgo_battery_t;
 
 typedef struct xgo_imu_s {
+#if XGO_WITH_EMULATOR_INPUTS /* else the attitude is the body's (xgo/config.h) */
     int32_t ground_roll_mdeg;  /* tilt of the ground under the robot */
     int32_t ground_pitch_mdeg;
-    int32_t yaw_acc;           /* integrated yaw, mdeg * XGO_TICK_HZ, wrapped */
     int32_t push_q10[2];       /* a shove's tilt (roll, pitch), mdeg * 1024 */
     int32_t push_rate_q10[2];  /* its rate per tick, same unit */
+#endif
+    int32_t yaw_acc;           /* integrated yaw, mdeg * XGO_TICK_HZ, wrapped */
     int32_t roll_mdeg;         /* outputs, updated by xgo_imu_tick */
     int32_t pitch_mdeg;
     int32_t yaw_mdeg;

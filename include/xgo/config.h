@@ -69,6 +69,11 @@
  * XGO_WITH_ODOMETRY: the world pose from the planted feet (an emulator's
  *   observer, xgo_board_world_pose): without it the pose stays 0, 0, 0.
  *   The inertial model needs it.
+ * XGO_WITH_EMULATOR_INPUTS: the emulator's inputs to the IMU model, the
+ *   ground's tilt and a shove (xgo/emulator.h: xgo_board_set_ground_tilt,
+ *   xgo_board_push): without them those calls do nothing, the ground reads
+ *   level (xgo_board_ground_tilt 0, 0) and the attitude is the body's own
+ *   (a real board's IMU measures the world instead).
  * XGO_WITH_NAMES: the names of registers, actions and counters, for traces
  *   and tools (the register table's name field, xgo_reg_name,
  *   xgo_action_name, xgo_diag_name): without them the table has no name
@@ -87,6 +92,9 @@
 #endif
 #ifndef XGO_WITH_NAMES
 #define XGO_WITH_NAMES 1
+#endif
+#ifndef XGO_WITH_EMULATOR_INPUTS
+#define XGO_WITH_EMULATOR_INPUTS 1
 #endif
 #if XGO_WITH_INERTIAL && !XGO_WITH_ODOMETRY
 #error "XGO_WITH_INERTIAL needs XGO_WITH_ODOMETRY (the body's path comes from it)"

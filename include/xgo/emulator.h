@@ -23,6 +23,10 @@
 extern "C" {
 #endif
 
+/* Built without XGO_WITH_EMULATOR_INPUTS (xgo/config.h; the firmware
+ * images) the tilt and the shove do nothing: the ground reads level and the
+ * IMU gives the body's own attitude. */
+
 /* The ground under the robot tilts by roll/pitch (the IMU reads the tilt;
  * self-stabilisation, 0x61 = 1, levels the body). Each is clamped to +-45
  * degrees: steeper is not ground a dog stands on (expected input). */

@@ -345,8 +345,14 @@ void xgo_board_set_ground_tilt(xgo_board_t *b, int32_t roll_mdeg, int32_t pitch_
 
 void xgo_board_ground_tilt(const xgo_board_t *b, int32_t *roll_mdeg, int32_t *pitch_mdeg)
 {
+#if XGO_WITH_EMULATOR_INPUTS
     *roll_mdeg = b->motion.imu.ground_roll_mdeg;
     *pitch_mdeg = b->motion.imu.ground_pitch_mdeg;
+#else
+    (void)b;
+    *roll_mdeg = 0; /* level: the input is compiled out (xgo/config.h) */
+    *pitch_mdeg = 0;
+#endif
 }
 
 void xgo_board_set_battery(xgo_board_t *b, uint8_t pct)

@@ -38,6 +38,7 @@ void xgo_imu_init(xgo_imu_t *imu)
     memset(imu, 0, sizeof *imu);
 }
 
+#if XGO_WITH_EMULATOR_INPUTS
 void xgo_imu_set_ground_tilt(xgo_imu_t *imu, int32_t roll_mdeg, int32_t pitch_mdeg)
 {
     /* A ramp steeper than 45 degrees is not ground a dog stands on. */
@@ -87,6 +88,36 @@ static void push_tick(xgo_imu_t *imu)
         }
     }
 }
+
+/* The tilt the emulator adds to the body's: the ground's and a shove's. */
+static int32_t extra_roll(const xgo_imu_t *imu)
+{
+    return imu->ground_roll_mdeg + (imu->push_q10[0] >> 10);
+}
+
+static int32_t extra_pitch(const xgo_imu_t *imu)
+{
+    return imu->ground_pitch_mdeg + (imu->push_q10[1] >> 10);
+}
+#else /* a real board's IMU measures the world: nothing to add (xgo/config.h) */
+void xgo_imu_set_ground_tilt(xgo_imu_t *imu, int32_t roll_mdeg, int32_t pitch_mdeg)
+{
+    (void)imu;
+    (void)roll_mdeg;
+    (void)pitch_mdeg;
+}
+
+void xgo_imu_push(xgo_imu_t *imu, int32_t roll_mdeg, int32_t pitch_mdeg)
+{
+    (void)imu;
+    (void)roll_mdeg;
+    (void)pitch_mdeg;
+}
+
+#define push_tick(imu) ((void)(imu))
+#define extra_roll(imu) 0
+#define extra_pitch(imu) 0
+#endif
 
 void xgo_imu_reset_yaw(xgo_imu_t *imu)
 {
@@ -146,9 +177,7 @@ void xgo_imu_tick(xgo_imu_t *imu, int32_t body_roll_mdeg, int32_t body_pitch_mde
     imu->yaw_acc = a32;
     acc = yaw_acc_mdeg(a32);
     push_tick(imu);
-    imu->roll_mdeg = wrap_mdeg((int64_t)body_roll_mdeg + imu->ground_roll_mdeg +
-                               (imu->push_q10[0] >> 10));
-    imu->pitch_mdeg = wrap_mdeg((int64_t)body_pitch_mdeg + imu->ground_pitch_mdeg +
-                                (imu->push_q10[1] >> 10));
+    imu->roll_mdeg = wrap_mdeg((int64_t)body_roll_mdeg + extra_roll(imu));
+    imu->pitch_mdeg = wrap_mdeg((int64_t)body_pitch_mdeg + extra_pitch(imu));
     imu->yaw_mdeg = wrap_mdeg((int64_t)acc + body_yaw_mdeg);
 }

@@ -30,7 +30,7 @@ case "$config" in
   full) suffix=; cfgdefs=() ;;
   firmware) # the lists' defaults, read where CMake keeps them (one source of truth)
     suffix=-fw
-    mapfile -t cfgdefs < <(sed -n 's/^set(XGO_FIRMWARE_\(OPTIONS\|BUFFERS\) "\([^"]*\)".*/\2/p' \
+    mapfile -t cfgdefs < <(sed -n 's/^xgo_firmware_list(XGO_FIRMWARE_\(OPTIONS\|BUFFERS\) "\([^"]*\)".*/\2/p' \
       CMakeLists.txt | tr ';' '\n' | sed '/^$/d; s/^/-D/')
     [ "${#cfgdefs[@]}" -gt 0 ] || { echo "no XGO_FIRMWARE_OPTIONS in CMakeLists.txt" >&2; exit 2; } ;;
   *) echo "XGO_MCU_CONFIG must be full or firmware" >&2; exit 2 ;;
