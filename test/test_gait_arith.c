@@ -120,11 +120,35 @@ static void test_yaw_widening_is_the_exact_division(void)
     TEST_ASSERT_EQUAL_UINT32(XGO_GAIT_YAW_REACH_Y_UM, gait_yaw_widening_um(INT32_MAX));
 }
 
+/* The velocity scaling by a Q16 factor (cadence cap, governor): random
+ * values of every magnitude and the edges, against the 64-bit product and
+ * C's division. */
+static void test_scale_q16_is_the_truncated_wide_product(void)
+{
+    static const int32_t edges[] = {INT32_MIN + 1, -65537, -65536, -65535, -1, 0, 1,
+                                    65535, 65536, 65537, INT32_MAX};
+    uint32_t seed = 7u;
+    unsigned k, e;
+    for (k = 0; k < 400000; ++k) {
+        const int32_t v = (int32_t)lcg(&seed) >> (k % 31u);
+        const int32_t lambda = (int32_t)(lcg(&seed) % 65537u);
+        TEST_ASSERT_EQUAL_INT32((int32_t)(((int64_t)v * lambda) / 65536), gait_scale_q16(v, lambda));
+    }
+    for (e = 0; e < sizeof edges / sizeof edges[0]; ++e) {
+        int32_t lambda;
+        for (lambda = 0; lambda <= 65536; ++lambda) {
+            TEST_ASSERT_EQUAL_INT32((int32_t)(((int64_t)edges[e] * lambda) / 65536),
+                                    gait_scale_q16(edges[e], lambda));
+        }
+    }
+}
+
 int main(void)
 {
     UNITY_BEGIN();
     RUN_TEST(test_mul_q_u16_matches_the_wide_product);
     RUN_TEST(test_mul_w_q24_matches_the_wide_product);
     RUN_TEST(test_yaw_widening_is_the_exact_division);
+    RUN_TEST(test_scale_q16_is_the_truncated_wide_product);
     return UNITY_END();
 }

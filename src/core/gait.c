@@ -358,7 +358,7 @@ static void limit_speed(xgo_gait_t *g, gait_tick_t *x)
     }
     if (g->cache_lambda_q16 < 65536) {
         for (c = 0; c < 3; ++c) {
-            x->target[c] = (int32_t)(((int64_t)x->target[c] * g->cache_lambda_q16) / 65536);
+            x->target[c] = gait_scale_q16(x->target[c], g->cache_lambda_q16);
         }
         g->limited_ticks++;
     }

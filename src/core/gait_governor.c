@@ -108,7 +108,7 @@ void gait_governed_ramp(xgo_gait_t *g, const gait_table_t *t, const int32_t prop
         g->outside_ticks++;
     }
     for (c = 0; c < 3; ++c) {
-        g->v_ramp[c] += (int32_t)(((int64_t)(prop[c] - g->v_ramp[c]) * lambda) / 65536);
+        g->v_ramp[c] += gait_scale_q16(prop[c] - g->v_ramp[c], lambda);
     }
 }
 

@@ -135,6 +135,23 @@ XGO_ALWAYS_INLINE int32_t mul_q_u16(int32_t a, uint32_t b, unsigned q)
 #endif
 }
 
+/* (int32_t)((int64_t)v * lambda / 65536), C's division (toward zero), for
+ * 0 <= lambda <= 2^16 and |v| < 2^31: a velocity scaled by the cadence cap
+ * or the governor, every tick they limit it. On a Cortex-M0 in 32 bits, with
+ * u = |v| = uh 2^16 + ul: floor(u lambda / 2^16) = uh lambda + floor(ul
+ * lambda / 2^16), each product below 2^32 (no library multiply); elsewhere
+ * the plain product. test/test_gait_arith.c checks it against the latter. */
+XGO_ALWAYS_INLINE int32_t gait_scale_q16(int32_t v, int32_t lambda)
+{
+#if XGO_CORE_NARROW_CPU
+    const uint32_t u = v < 0 ? 0u - (uint32_t)v : (uint32_t)v;
+    const uint32_t q = (u >> 16) * (uint32_t)lambda + (((u & 0xFFFFu) * (uint32_t)lambda) >> 16);
+    return v < 0 ? -(int32_t)q : (int32_t)q;
+#else
+    return (int32_t)(((int64_t)v * lambda) / 65536);
+#endif
+}
+
 /* mul_q(w, p, 24) for a yaw rate w (rad/s Q24) times a position p (um):
  * the same result, bit for bit. On a Cortex-M0, when |w| < 2^26 (always:
  * yaw_q24 of a clamped rate, 200 deg/s = 58.6e6) and |p| < 2^20 (a point
