@@ -145,14 +145,15 @@ typedef struct candidate_s {
     xgo_bam_t g, t2;
 } candidate_t;
 
-/* u-angle of a plane vector: u(a) = (-sin a, cos a) points along (x, h). */
-static xgo_bam_t u_angle64(int64_t x, int64_t h)
+/* u-angle of a plane vector: u(a) = (-sin a, cos a) points along (x, h);
+ * |x|, |h| < 2^30 (the projection's vectors: below 2^28), so the 32-bit
+ * atan2 (xgo_atan2_64 gives the same for such values). */
+static xgo_bam_t u_angle(int32_t x, int32_t h)
 {
-    return xgo_atan2_64(-x, h);
+    return xgo_atan2(-x, h);
 }
 
-static void consider(candidate_t *best, int64_t px, int64_t ph, int64_t x, int64_t h,
-                     xgo_bam_t g, xgo_bam_t t2)
+static void consider(candidate_t *best, int64_t px, int64_t ph, int32_t x, int32_t h, xgo_bam_t g, xgo_bam_t t2)
 {
     int64_t dx = px - x, dh = ph - h; /* |d| < 2^27: squares fit */
     int64_t d2 = dx * dx + dh * dh;
@@ -163,71 +164,84 @@ static void consider(candidate_t *best, int64_t px, int64_t ph, int64_t x, int64
     }
 }
 
+/* The boundary arcs' circles for the limits of one side (0: lo, 1: hi).
+ * Out of line, as are the candidates below: the projection is on the
+ * deepest stack path (docs/mcu.md), and each keeps its own locals. */
+XGO_OWN_FRAME static void planar_arc(planar_t *pl, int side)
+{
+    /* g fixed at a limit: foot on a circle about the hip */
+    const int32_t gl = side ? pl->g_hi : pl->g_lo, tl = side ? pl->t_hi : pl->t_lo;
+    xgo_q30_t sg, cg;
+    int64_t fx, fh;
+    xgo_sincos((uint32_t)gl, &sg, &cg);
+    fx = round_shift(mul_cold(pl->l2, cg), 30); /* foot in the thigh frame */
+    fh = pl->l1 + round_shift(mul_cold(pl->l2, sg), 30);
+    pl->hip_r[side] = (int32_t)isqrt64_round((uint64_t)(fx * fx + fh * fh));
+    pl->hip_a[side] = u_angle((int32_t)fx, (int32_t)fh); /* foot direction past the thigh */
+    /* t2 fixed at a limit: foot on a circle about the knee */
+    xgo_sincos((uint32_t)tl, &sg, &cg);
+    pl->knee_x[side] = (int32_t)-round_shift(mul_cold(pl->l1, sg), 30);
+    pl->knee_h[side] = (int32_t)round_shift(mul_cold(pl->l1, cg), 30);
+}
+
 static void planar_arcs(planar_t *pl)
 {
     const xgo_range_t *knee = &pl->p->joint_mdeg[XGO_JOINT_KNEE], *hip = &pl->p->joint_mdeg[XGO_JOINT_HIP];
-    int side;
     pl->g_lo = xgo_bam_signed(xgo_mdeg_to_bam(knee->lo) + pl->knee_off);
     pl->g_hi = xgo_bam_signed(xgo_mdeg_to_bam(knee->hi) + pl->knee_off);
     pl->t_lo = limit_bam(hip->lo);
     pl->t_hi = limit_bam(hip->hi);
-    for (side = 0; side < 2; ++side) {
-        /* g fixed at a limit: foot on a circle about the hip */
-        int32_t gl = side ? pl->g_hi : pl->g_lo;
-        int32_t tl = side ? pl->t_hi : pl->t_lo;
-        xgo_q30_t sg, cg, st, ct;
-        int64_t fx, fh;
-        xgo_sincos((uint32_t)gl, &sg, &cg);
-        fx = round_shift(mul_cold(pl->l2, cg), 30); /* foot in the thigh frame */
-        fh = pl->l1 + round_shift(mul_cold(pl->l2, sg), 30);
-        pl->hip_r[side] = (int32_t)isqrt64_round((uint64_t)(fx * fx + fh * fh));
-        pl->hip_a[side] = u_angle64(fx, fh); /* foot direction past the thigh */
-        /* t2 fixed at a limit: foot on a circle about the knee */
-        xgo_sincos((uint32_t)tl, &st, &ct);
-        pl->knee_x[side] = (int32_t)-round_shift(mul_cold(pl->l1, st), 30);
-        pl->knee_h[side] = (int32_t)round_shift(mul_cold(pl->l1, ct), 30);
-    }
+    planar_arc(pl, 0);
+    planar_arc(pl, 1);
     pl->arcs_ready = 1;
 }
 
-/* Nearest point of the reachable region to (x, h): the region is the image
- * of the limit box, so its boundary is four arcs (g at a limit: circles
- * about the hip; t2 at a limit: circles about the knee). */
-static void planar_project(planar_t *pl, int64_t x, int64_t h, xgo_bam_t *g, xgo_bam_t *t2)
+/* The candidate on the circle about the hip where g is at a limit. */
+XGO_OWN_FRAME static void hip_candidate(const planar_t *pl, int side, int32_t x, int32_t h, xgo_bam_t target,
+                                        candidate_t *best)
+{
+    const int32_t r = pl->hip_r[side];
+    const xgo_bam_t a = pl->hip_a[side];
+    xgo_q30_t sp, cp;
+    xgo_bam_t psi = clamp_arc(target, (uint32_t)pl->t_lo + a, (uint32_t)pl->t_hi - (uint32_t)pl->t_lo);
+    xgo_sincos(psi, &sp, &cp);
+    consider(best, -round_shift(mul_cold(r, sp), 30), round_shift(mul_cold(r, cp), 30), x, h,
+             (uint32_t)(side ? pl->g_hi : pl->g_lo), psi - a);
+}
+
+/* The candidate on the circle about the knee where t2 is at a limit. */
+XGO_OWN_FRAME static void knee_candidate(const planar_t *pl, int side, int32_t x, int32_t h, candidate_t *best)
+{
+    const int32_t tl = side ? pl->t_hi : pl->t_lo;
+    const int32_t kx = pl->knee_x[side], kh = pl->knee_h[side];
+    xgo_q30_t sb, cb;
+    /* shank u-angle b = t2 + g - 90deg, g within its limits */
+    const xgo_bam_t b_lo = (uint32_t)tl + (uint32_t)pl->g_lo - XGO_BAM_90;
+    const xgo_bam_t b = clamp_arc(u_angle(x - kx, h - kh), b_lo,
+                                  (uint32_t)pl->g_hi - (uint32_t)pl->g_lo);
+    xgo_sincos(b, &sb, &cb);
+    consider(best, kx - round_shift(mul_cold(pl->l2, sb), 30), kh + round_shift(mul_cold(pl->l2, cb), 30), x, h,
+             b - (uint32_t)tl + XGO_BAM_90, (uint32_t)tl);
+}
+
+/* Nearest point of the reachable region to (x, h) (q4, |x|, |h| < 2^26):
+ * the region is the image of the limit box, so its boundary is four arcs
+ * (g at a limit: circles about the hip; t2 at a limit: circles about the
+ * knee). */
+static void planar_project(planar_t *pl, int32_t x, int32_t h, xgo_bam_t *g, xgo_bam_t *t2)
 {
     candidate_t best;
-    int side;
-    xgo_bam_t target = u_angle64(x, h);
+    const xgo_bam_t target = u_angle(x, h);
     if (!pl->arcs_ready) {
         planar_arcs(pl);
     }
     best.dist2 = INT64_MAX;
     best.g = (uint32_t)pl->g_lo;
     best.t2 = (uint32_t)pl->t_lo;
-    for (side = 0; side < 2; ++side) {
-        /* g fixed at a limit: foot on a circle about the hip */
-        int32_t gl = side ? pl->g_hi : pl->g_lo;
-        int32_t r = pl->hip_r[side];
-        xgo_bam_t a = pl->hip_a[side];
-        xgo_q30_t sp, cp;
-        xgo_bam_t psi = clamp_arc(target, (uint32_t)pl->t_lo + a, (uint32_t)pl->t_hi - (uint32_t)pl->t_lo);
-        xgo_sincos(psi, &sp, &cp);
-        consider(&best, -round_shift(mul_cold(r, sp), 30), round_shift(mul_cold(r, cp), 30), x, h, (uint32_t)gl,
-                 psi - a);
-    }
-    for (side = 0; side < 2; ++side) {
-        /* t2 fixed at a limit: foot on a circle about the knee */
-        int32_t tl = side ? pl->t_hi : pl->t_lo;
-        int32_t kx = pl->knee_x[side], kh = pl->knee_h[side];
-        xgo_q30_t sb, cb;
-        xgo_bam_t b, b_lo;
-        /* shank u-angle b = t2 + g - 90deg, g within its limits */
-        b_lo = (uint32_t)tl + (uint32_t)pl->g_lo - XGO_BAM_90;
-        b = clamp_arc(u_angle64(x - kx, h - kh), b_lo, (uint32_t)pl->g_hi - (uint32_t)pl->g_lo);
-        xgo_sincos(b, &sb, &cb);
-        consider(&best, kx - round_shift(mul_cold(pl->l2, sb), 30), kh + round_shift(mul_cold(pl->l2, cb), 30), x, h,
-                 b - (uint32_t)tl + XGO_BAM_90, (uint32_t)tl);
-    }
+    hip_candidate(pl, 0, x, h, target, &best);
+    hip_candidate(pl, 1, x, h, target, &best);
+    knee_candidate(pl, 0, x, h, &best);
+    knee_candidate(pl, 1, x, h, &best);
     *g = best.g;
     *t2 = best.t2;
 }

@@ -150,7 +150,7 @@ static int32_t *channel(xgo_body_pose_t *p, unsigned c)
  * each periodic channel at +-spread - every corner for up to two periodic
  * channels, each channel's two ends alone for more. Returns how many there
  * are; corner i in *out. */
-static unsigned corner(xgo_reach_t *s, unsigned i, xgo_body_pose_t *out)
+XGO_OWN_FRAME static unsigned corner(xgo_reach_t *s, unsigned i, xgo_body_pose_t *out)
 {
     unsigned c, k = 0, n;
     unsigned idx[6];
