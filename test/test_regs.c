@@ -218,6 +218,33 @@ static void test_firmware_window_and_gait_type_share_0x09(void)
     TEST_ASSERT_EQUAL_STRING("firmware", xgo_reg_name(0x0A));
 }
 
+/* The string is kept in the image's window but for its byte at 0x09 (kept
+ * apart): short, full-length, longer and missing strings read back NUL
+ * padded and cut at 10, whatever the gait type holds. */
+static void test_firmware_strings_of_any_length(void)
+{
+    static const struct {
+        const char *in;
+        char out[10];
+    } k_cases[] = {
+        {"AB", {'A', 'B'}},
+        {"ABC", {'A', 'B', 'C'}},
+        {"0123456789", {'0', '1', '2', '3', '4', '5', '6', '7', '8', '9'}},
+        {"0123456789XYZ", {'0', '1', '2', '3', '4', '5', '6', '7', '8', '9'}},
+        {NULL, {0}},
+    };
+    const uint8_t slow_trot = 3;
+    uint8_t fw[10];
+    size_t i;
+    for (i = 0; i < sizeof k_cases / sizeof k_cases[0]; i++) {
+        xgo_regs_init(&regs, k_cases[i].in, 0x00);
+        TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_write(&regs, 0x09, &slow_trot, 1));
+        TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_read(&regs, 0x07, 10, fw));
+        TEST_ASSERT_EQUAL_HEX8_ARRAY(k_cases[i].out, fw, 10);
+        TEST_ASSERT_EQUAL_HEX8(3, read1(0x09));
+    }
+}
+
 static void test_firmware_is_read_only(void)
 {
     const uint8_t x = 'X';
@@ -653,6 +680,7 @@ int main(void)
     RUN_TEST(test_unmapped_addresses_read_zero_and_ignore_writes);
     RUN_TEST(test_write_across_a_gap_applies_the_mapped_part);
     RUN_TEST(test_firmware_window_and_gait_type_share_0x09);
+    RUN_TEST(test_firmware_strings_of_any_length);
     RUN_TEST(test_firmware_is_read_only);
     RUN_TEST(test_lite_identity);
     RUN_TEST(test_every_address_finds_the_first_row_of_its_model);

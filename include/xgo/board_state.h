@@ -45,10 +45,14 @@ typedef struct xgo_regs_stats_s {
 typedef struct xgo_regs_s {
     uint8_t mem[XGO_REGS_STORED];    /* flat image; unmapped addresses stay 0 */
     uint8_t written[(XGO_REGS_STORED + 7u) / 8u]; /* bit per address: written since last taken */
-    char firmware[XGO_FIRMWARE_LEN]; /* NUL padded ASCII */
+    char firmware_at_gait;           /* the firmware string's byte at 0x09, where the
+                                        image has the gait type (the rest of the
+                                        string is in the image, read-only) */
     int32_t attitude_mdeg[3];        /* roll, pitch, yaw in millidegrees */
+#if XGO_WITH_INERTIAL /* else the IMU block's acceleration and rate read 0 */
     int16_t accel[3];                /* IMU block: acceleration, 16384 = 1 g */
     int16_t gyro[3];                 /* IMU block: angular rate, 16.4 = 1 deg/s */
+#endif
     uint8_t turn_to[2];              /* last heading command at 0x3F, int16 BE */
     uint8_t servo_cmd[12];           /* servo-mode commands written to 0x50..0x5B
                                         (mem there: the joints as they are) */

@@ -235,13 +235,19 @@ int xgo_regs_was_written_range(const xgo_regs_t *r, uint8_t first, uint8_t last)
     return 0;
 }
 
-/* The flat image of the firmware window: every byte but 0x09 (gait type). */
-static void store_firmware(xgo_regs_t *r)
+/* The firmware string (up to 10 ASCII characters, NUL padded) into the
+ * flat image of its window, every byte but 0x09 (gait type): that one is
+ * kept apart for the view at 0x07. */
+static void store_firmware(xgo_regs_t *r, const char *firmware)
 {
-    unsigned i;
+    unsigned i, end = 0;
     for (i = 0; i < XGO_FIRMWARE_LEN; i++) {
-        if (XGO_REG_FIRMWARE + i != XGO_REG_GAIT_TYPE) {
-            r->mem[XGO_REG_FIRMWARE + i] = (uint8_t)r->firmware[i];
+        const char c = firmware != NULL && i == end && firmware[i] != '\0' ? firmware[i] : '\0';
+        end += c != '\0';
+        if (XGO_REG_FIRMWARE + i == XGO_REG_GAIT_TYPE) {
+            r->firmware_at_gait = c;
+        } else {
+            r->mem[XGO_REG_FIRMWARE + i] = (uint8_t)c;
         }
     }
 }
@@ -279,9 +285,6 @@ void xgo_regs_init(xgo_regs_t *r, const char *firmware, uint8_t version)
 
     memset(r, 0, sizeof *r);
     r->arm = version == XGO_VERSION_MINI2;
-    for (i = 0; i < XGO_FIRMWARE_LEN && firmware != NULL && firmware[i] != '\0'; i++) {
-        r->firmware[i] = firmware[i];
-    }
     load_initial(r, 1);
     for (i = 0; i < XGO_REGS_STORED; i++) {
         const xgo_reg_desc_t *d = desc_at(r, (unsigned)i);
@@ -291,7 +294,7 @@ void xgo_regs_init(xgo_regs_t *r, const char *firmware, uint8_t version)
     }
     memcpy(&r->mem[XGO_REG_BT_NAME], k_default_name, sizeof k_default_name - 1);
     r->mem[XGO_REG_VERSION] = version;
-    store_firmware(r);
+    store_firmware(r, firmware);
     xgo_regs_set_attitude(r, 0, 0, 0);
 }
 
@@ -450,8 +453,13 @@ static void imu_block(const xgo_regs_t *r, uint8_t out[XGO_IMU_BLOCK_LEN])
 {
     unsigned i;
     for (i = 0; i < 3; i++) {
+#if XGO_WITH_INERTIAL
         put_u16_le(&out[2u * i], r->accel[i]);
         put_u16_le(&out[6u + 2u * i], r->gyro[i]);
+#else
+        put_u16_le(&out[2u * i], 0); /* no model: a port would put a real IMU's here */
+        put_u16_le(&out[6u + 2u * i], 0);
+#endif
         put_u32_le(&out[12u + 4u * i], xgo_mdeg_to_float32_bits(r->attitude_mdeg[i]));
     }
 }
@@ -463,7 +471,8 @@ static void apply_read_views(const xgo_regs_t *r, uint8_t addr, size_t n, uint8_
     uint8_t view[XGO_IMU_BLOCK_LEN];
     size_t len = 0, i;
     if (addr == XGO_REG_FIRMWARE) {
-        memcpy(view, r->firmware, XGO_FIRMWARE_LEN);
+        memcpy(view, &r->mem[XGO_REG_FIRMWARE], XGO_FIRMWARE_LEN);
+        view[XGO_REG_GAIT_TYPE - XGO_REG_FIRMWARE] = (uint8_t)r->firmware_at_gait;
         len = XGO_FIRMWARE_LEN;
     } else if (addr >= XGO_REG_IMU_ROLL && addr <= XGO_REG_IMU_YAW && n >= 4) {
         put_u32_le(view, xgo_mdeg_to_float32_bits(r->attitude_mdeg[addr - XGO_REG_IMU_ROLL]));
@@ -501,11 +510,17 @@ xgo_drop_reason_t xgo_regs_read(const xgo_regs_t *r, uint8_t addr, size_t n, uin
 
 void xgo_regs_set_inertial(xgo_regs_t *r, const int16_t accel[3], const int16_t gyro[3])
 {
+#if XGO_WITH_INERTIAL
     unsigned i;
     for (i = 0; i < 3; i++) { /* six halfwords: less than two memcpy calls, every tick */
         r->accel[i] = accel[i];
         r->gyro[i] = gyro[i];
     }
+#else /* without the model they are 0 (xgo/config.h) */
+    (void)r;
+    (void)accel;
+    (void)gyro;
+#endif
 }
 
 void xgo_regs_set_attitude(xgo_regs_t *r, int32_t roll_mdeg, int32_t pitch_mdeg, int32_t yaw_mdeg)
