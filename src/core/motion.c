@@ -304,7 +304,7 @@ static void action_targets(xgo_motion_t *m, xgo_body_pose_t *pose, xgo_vec3_t fe
 }
 
 /* The command the gait follows: the registers', or a turn to a heading. */
-static void gait_command(xgo_motion_t *m, const xgo_regs_t *r, xgo_gait_command_t *cmd)
+static XGO_OWN_FRAME void gait_command(xgo_motion_t *m, const xgo_regs_t *r, xgo_gait_command_t *cmd)
 {
     xgo_motion_gait_command(m, r, cmd);
     if (xgo_heading_active(&m->heading)) {
