@@ -301,7 +301,6 @@ typedef struct xgo_motion_s {
         int32_t rot_q30[9];                 /* pose's rotation (xgo_body_rotation), kept
                                                for mapping measured feet back (36 B) */
         xgo_vec3_t feet[XGO_LEG_COUNT];     /* machine frame, as asked */
-        xgo_vec3_t feet_leg[XGO_LEG_COUNT]; /* the same in the leg frames */
         int32_t q_mdeg[XGO_SERVO_COUNT];
         uint8_t projected;                  /* bit leg: target was unreachable */
         uint8_t valid;

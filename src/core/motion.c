@@ -132,20 +132,24 @@ static void action_pose(xgo_motion_t *m, xgo_body_pose_t *pose, xgo_vec3_t feet[
 /* Body + leg IK into m->ik_cache.q_mdeg (the servos' targets), skipped when
  * the pose and the feet are those of the last solve: a robot standing
  * still (the common case) then costs almost nothing, which matters on a
- * Cortex-M0 (docs/mcu.md). */
-static void solve_joints(xgo_motion_t *m, const xgo_body_pose_t *pose,
-                         const xgo_vec3_t feet[XGO_LEG_COUNT])
+ * Cortex-M0 (docs/mcu.md). The leg-frame feet are not kept (48 bytes of
+ * RAM; an observer works them out again, xgo_motion_feet_body); out of
+ * line, so they are not in the frame the reach search's deeper path
+ * starts from. */
+XGO_OWN_FRAME static void solve_joints(xgo_motion_t *m, const xgo_body_pose_t *pose,
+                                       const xgo_vec3_t feet[XGO_LEG_COUNT])
 {
     if (!m->ik_cache.valid || !same_pose(&m->ik_cache.pose, pose) ||
         !same_feet(m->ik_cache.feet, feet)) {
+        xgo_vec3_t feet_leg[XGO_LEG_COUNT];
         unsigned leg;
         m->ik_cache.pose = *pose;
         for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
             m->ik_cache.feet[leg] = feet[leg]; /* no memcpy call: every walking tick */
         }
         xgo_body_rotation(pose, m->ik_cache.rot_q30);
-        xgo_body_ik_rotated(m->profile, pose, m->ik_cache.rot_q30, feet, m->ik_cache.feet_leg);
-        m->ik_cache.projected = (uint8_t)xgo_legs_ik(m->profile, m->ik_cache.feet_leg,
+        xgo_body_ik_rotated(m->profile, pose, m->ik_cache.rot_q30, feet, feet_leg);
+        m->ik_cache.projected = (uint8_t)xgo_legs_ik(m->profile, feet_leg,
                                                      (int32_t(*)[XGO_JOINT_COUNT])m->ik_cache.q_mdeg);
         m->ik_cache.valid = 1;
     }
@@ -577,13 +581,17 @@ static XGO_OWN_FRAME void measure_feet(xgo_motion_t *m, int contact_known)
  * used: the IK's feet or the FK of the joints. */
 void xgo_motion_feet_body(const xgo_motion_t *m, xgo_vec3_t out[XGO_LEG_COUNT])
 {
+    xgo_vec3_t feet_leg[XGO_LEG_COUNT];
     unsigned leg;
     if (!m->feet_as_solved) {
         feet_of_joints(m, out);
         return;
     }
+    /* The leg-frame feet solve_joints used: the same inputs, the same result. */
+    xgo_body_ik_rotated(m->profile, &m->ik_cache.pose, m->ik_cache.rot_q30, m->ik_cache.feet,
+                        feet_leg);
     for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
-        xgo_leg_to_body(m->profile, (xgo_leg_t)leg, &m->ik_cache.feet_leg[leg], &out[leg]);
+        xgo_leg_to_body(m->profile, (xgo_leg_t)leg, &feet_leg[leg], &out[leg]);
     }
 }
 
