@@ -223,6 +223,51 @@ static uint32_t sqrt_chord32(uint32_t m)
     return y > 65535u ? 65535u : y;
 }
 
+#if XGO_CORE_NARROW_CPU
+/* round(2^30 / sqrt((32 + i) * 2^25)), i = 0..96: the reciprocal of
+ * sqrt_tab's roots at the same nodes (16384..32768). */
+static const uint16_t rsqrt_tab[97] = {
+    32768, 32268, 31790, 31332, 30894, 30474, 30070, 29682, 29309, 28949, 28602, 28268, 27945,
+    27632, 27330, 27038, 26755, 26481, 26214, 25956, 25705, 25462, 25225, 24994, 24770, 24552,
+    24339, 24132, 23930, 23733, 23541, 23354, 23170, 22992, 22817, 22646, 22479, 22315, 22155,
+    21999, 21845, 21695, 21548, 21404, 21263, 21124, 20988, 20855, 20724, 20596, 20470, 20346,
+    20225, 20106, 19988, 19873, 19760, 19649, 19539, 19431, 19326, 19221, 19119, 19018, 18919,
+    18821, 18725, 18630, 18536, 18444, 18354, 18264, 18176, 18090, 18004, 17920, 17837, 17755,
+    17674, 17594, 17515, 17438, 17361, 17285, 17211, 17137, 17064, 16992, 16921, 16851, 16782,
+    16714, 16646, 16579, 16514, 16448, 16384,
+};
+#endif
+
+/* floor(n / y) for the Newton step of xgo_sqrt64_near: y within a few units
+ * of sqrt(m) for m in [2^30, 2^32), the quotient below 2^16. One
+ * instruction with a divider; without one (Cortex-M0: libgcc's division is
+ * about 100 instructions) an estimate with the reciprocal of sqrt(m) from a
+ * table and its chord (within about 10 of the quotient), made exact by
+ * stepping on the remainder, which fits int32 (|error| * y < 2^20). The
+ * same value either way. */
+static uint32_t newton_quotient(uint32_t n, uint32_t y, uint32_t m)
+{
+#if XGO_CORE_NARROW_CPU
+    const uint32_t i = (m >> 25) - 32u, f = (m >> 9) & 0xFFFFu;
+    const uint32_t a = rsqrt_tab[i], b = rsqrt_tab[i + 1u];
+    const uint32_t r = a - (((a - b) * f) >> 16);  /* ~ 2^30 / y, <= 2^15 */
+    uint32_t q = ((n >> 16) * r) >> 14;            /* < 2^31 before the shift */
+    int32_t rem = (int32_t)(n - q * y);            /* modulo 2^32: small, exact */
+    while (rem < 0) {
+        --q;
+        rem += (int32_t)y;
+    }
+    while (rem >= (int32_t)y) {
+        ++q;
+        rem -= (int32_t)y;
+    }
+    return q;
+#else
+    (void)m;
+    return n / y;
+#endif
+}
+
 uint32_t xgo_sqrt64_near(uint64_t x)
 {
     uint32_t hi = (uint32_t)(x >> 32), lo, y0, rem, y;
@@ -240,7 +285,7 @@ uint32_t xgo_sqrt64_near(uint64_t x)
     }
     rem = hi - y0 * y0; /* < 6 y0 < 2^19 (y0 down to 2 below the floor) */
     /* the Newton step in units of 4 so the dividend fits 32 bits */
-    y = (y0 << 16) + ((((rem << 13) + (lo >> 19)) / y0) << 2);
+    y = (y0 << 16) + (newton_quotient((rem << 13) + (lo >> 19), y0, hi) << 2);
     return (y < (y0 << 16) ? 0xFFFFFFFFu : y) >> (s / 2u);
 }
 
