@@ -146,7 +146,9 @@ __attribute__((section(".isr_vector"), used)) static const struct {
 
 /* ---- start-up ----------------------------------------------------------- */
 
-int main(void)
+/* Out of line: main's frame is under every call the firmware makes (the
+ * stack bound, docs/mcu.md), and these constants need registers. */
+__attribute__((noinline)) static void start(void)
 {
     xgo_nv_file_init(&port.board.nv);
     xgo_device_init(&device, &port, NULL);
@@ -166,6 +168,11 @@ int main(void)
     TIMER0_CC0 = TICK_US;
     TIMER0_INTENSET = TIMER_INT_COMPARE0;
     TIMER0_TASKS_START = 1;
+}
+
+int main(void)
+{
+    start();
     xgo_cm_serve(&device);
     return 0;
 }

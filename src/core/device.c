@@ -218,10 +218,10 @@ void xgo_device_hangup(xgo_device_t *d)
     }
 }
 
-void xgo_device_run(xgo_device_t *d)
+/* Input, the silence timeout, a hang-up and replies, at the parser's time
+ * now_ms. */
+XGO_OWN_FRAME static void serve_input(xgo_device_t *d, uint32_t now_ms)
 {
-    const uint32_t now_ms = wire_clock(d);
-    run_due_ticks(d);
     feed_input(d, now_ms);
     if (d->rx_head == d->rx_tail) {
         /* Only with nothing held back: bytes waiting in the ring are not
@@ -232,6 +232,16 @@ void xgo_device_run(xgo_device_t *d)
         }
     }
     send_replies(d);
+}
+
+/* The control ticks are the deepest call path of a firmware image: the
+ * frame they are called from holds only the device and the count (the
+ * parser's time is taken before them, kept in wire_ms, and used after). */
+void xgo_device_run(xgo_device_t *d)
+{
+    (void)wire_clock(d);
+    run_due_ticks(d);
+    serve_input(d, d->wire_ms);
 }
 
 int xgo_device_idle(xgo_device_t *d)
