@@ -545,6 +545,22 @@ static uint32_t div_shifted(uint32_t n, uint32_t d, uint32_t *rem)
 #endif
 
 #if XGO_CORE_NARROW_CPU
+/* round(2^22 / (128 + k)), k = 0..128: 2^45 / x at the 128 equal steps of
+ * x in [2^30, 2^31] (the chord between two entries is at most half a unit
+ * above the curve). */
+static const uint16_t recip_tab[129] = {
+    32768, 32514, 32264, 32018, 31775, 31536, 31301, 31069, 30840, 30615, 30394, 30175, 29959,
+    29747, 29537, 29331, 29127, 28926, 28728, 28533, 28340, 28150, 27962, 27777, 27594, 27414,
+    27236, 27060, 26887, 26715, 26546, 26379, 26214, 26052, 25891, 25732, 25575, 25420, 25267,
+    25116, 24966, 24818, 24672, 24528, 24385, 24245, 24105, 23967, 23831, 23697, 23564, 23432,
+    23302, 23173, 23046, 22920, 22795, 22672, 22550, 22429, 22310, 22192, 22075, 21960, 21845,
+    21732, 21620, 21509, 21400, 21291, 21183, 21077, 20972, 20867, 20764, 20662, 20560, 20460,
+    20361, 20262, 20165, 20068, 19973, 19878, 19784, 19692, 19600, 19508, 19418, 19329, 19240,
+    19152, 19065, 18979, 18893, 18809, 18725, 18641, 18559, 18477, 18396, 18316, 18236, 18157,
+    18079, 18001, 17924, 17848, 17772, 17697, 17623, 17549, 17476, 17404, 17332, 17261, 17190,
+    17120, 17050, 16981, 16913, 16845, 16777, 16710, 16644, 16578, 16513, 16448, 16384,
+};
+
 /* One step of restoring division: the next quotient bit. */
 #define RESTORING_STEP(r, q, d) \
     do {                        \
@@ -566,10 +582,29 @@ static uint32_t residual_q29(uint32_t m, uint32_t e)
 #if XGO_CORE_DIV64_NATIVE
     return (uint32_t)(((uint64_t)m << 29) / e);
 #elif XGO_CORE_NARROW_CPU
-    uint32_t r = m << 5; /* < e: the quotient's top bits are zero */
-    uint32_t q = 0;
+    /* The top 12 bits of the quotient, qt = floor(m 2^17 / e), from the
+     * reciprocal table (never above it, and less than one below: qt or
+     * qt - 1), its remainder in 32 bits (in [0, 2e): exact modulo 2^32),
+     * then 12 restoring steps for the low bits. */
+    uint32_t big = e, q, r;
+    unsigned s = 0;
     int i;
-    for (i = 0; i < 6; ++i) { /* 4 steps a round: less loop overhead at -Os */
+    while (big < 0x40000000u) { /* e >= 2^28: at most twice */
+        big <<= 1;
+        ++s;
+    }
+    {
+        const uint32_t k = (big >> 23) - 128u, f = (big >> 7) & 0xFFFFu;
+        const uint32_t a = recip_tab[k], b = recip_tab[k + 1u];
+        const uint32_t rc = a - (((a - b) * f) >> 16) - 2u; /* <= 2^45 / big, within 3.5 */
+        q = ((m >> 8) * rc) >> (20u - s);                    /* m >> 8 < 2^17, rc <= 2^15 */
+    }
+    r = (m << 17) - q * e; /* modulo 2^32; the true value is in [0, 2e) */
+    if (r >= e) {
+        r -= e;
+        ++q;
+    }
+    for (i = 0; i < 3; ++i) { /* 4 steps a round: less loop overhead at -Os */
         RESTORING_STEP(r, q, e);
         RESTORING_STEP(r, q, e);
         RESTORING_STEP(r, q, e);
