@@ -184,28 +184,34 @@ static void test_action_runs(void)
     TEST_ASSERT_EQUAL_UINT8(0, xgo_board_action(&board));
 }
 
-/* A frame longer than XGO_PARSER_FRAME_MAX (firmware: 64) is dropped as a
+/* A frame longer than XGO_PARSER_FRAME_MAX (firmware: 32) is dropped as a
  * bad length, and the read request right behind it is still answered: its
- * bytes are rescanned. 64 bytes (56 data) still pass. */
+ * bytes are rescanned. 32 bytes (24 data: 0x30..0x47, the whole-unit and
+ * foot registers, valid values) still pass and are applied. */
 static void test_frame_length_limit(void)
 {
-    static uint8_t bytes[2 * 72 + 9];
+    static uint8_t bytes[2 * 40 + 9];
     uint32_t before[XGO_DIAG_COUNT], after[XGO_DIAG_COUNT];
-    uint8_t reply[64];
-    const uint8_t data[57] = {0};
+    uint8_t reply[64], data[25];
     size_t n = 0;
+    memset(data, 0x80, sizeof data);
+    data[0] = 0x90; /* vx, to see that the 24-byte write is applied */
+    data[XGO_REG_MOVE_MODE - 0x30] = 0; /* a valid pace */
+    data[XGO_REG_ACTION - 0x30] = 0;    /* no action */
+    data[XGO_REG_TURN_TO - 0x30] = 0;   /* a heading (two bytes with 0x40) */
     init_model(XGO_MODEL_MINI);
     xgo_board_counters(&board, before);
-    n += xgo_frame_encode(XGO_TYPE_WRITE, 0x80, data, 56, &bytes[n], sizeof bytes - n);
-    n += xgo_frame_encode(XGO_TYPE_WRITE, 0x80, data, 57, &bytes[n], sizeof bytes - n);
-    TEST_ASSERT_EQUAL_UINT(64 + 65, n);
+    n += xgo_frame_encode(XGO_TYPE_WRITE, 0x30, data, 24, &bytes[n], sizeof bytes - n);
+    n += xgo_frame_encode(XGO_TYPE_WRITE, 0x30, data, 25, &bytes[n], sizeof bytes - n);
+    TEST_ASSERT_EQUAL_UINT(32 + 33, n);
     xgo_board_receive(&board, bytes, n, 0);
     TEST_ASSERT_EQUAL_UINT(20, wire_read(XGO_REG_SERVO11, 12, reply, sizeof reply));
     xgo_board_counters(&board, after);
-    TEST_ASSERT_EQUAL_UINT32(XGO_PARSER_FRAME_MAX < 65u ? 1u : 0u,
+    TEST_ASSERT_EQUAL_UINT32(XGO_PARSER_FRAME_MAX < 33u ? 1u : 0u,
                              after[XGO_DIAG_BAD_LENGTH] - before[XGO_DIAG_BAD_LENGTH]);
-    TEST_ASSERT_EQUAL_UINT32(XGO_PARSER_FRAME_MAX < 65u ? 2u : 3u,
+    TEST_ASSERT_EQUAL_UINT32(XGO_PARSER_FRAME_MAX < 33u ? 2u : 3u,
                              after[XGO_DIAG_FRAMES_OK] - before[XGO_DIAG_FRAMES_OK]);
+    TEST_ASSERT_EQUAL_HEX8(0x90, read1(XGO_REG_VX));
 }
 
 /* The traced replies and dropped replies (their data copied at the event). */

@@ -35,9 +35,9 @@
  * checksum and tail are checked, so this sizes its buffer. A longer frame
  * is dropped as a bad length (counted in bad_length) and its bytes are
  * rescanned like any rejected candidate's. 255: every frame the protocol
- * allows; the firmware images take 64, writes of up to 56 bytes (docs/mcu.md
+ * allows; the firmware images take 32, writes of up to 24 bytes (docs/mcu.md
  * "Build options": the vendor library's writes are a few bytes each, a
- * Bluetooth name up to 10; 191 bytes of RAM less). */
+ * Bluetooth name up to 10, the twelve joints 12; 223 bytes of RAM less). */
 #ifndef XGO_PARSER_FRAME_MAX
 #define XGO_PARSER_FRAME_MAX 255u
 #endif
