@@ -155,8 +155,8 @@ static xgo_bam_t u_angle(int32_t x, int32_t h)
 
 static void consider(candidate_t *best, int64_t px, int64_t ph, int32_t x, int32_t h, xgo_bam_t g, xgo_bam_t t2)
 {
-    int64_t dx = px - x, dh = ph - h; /* |d| < 2^27: squares fit */
-    int64_t d2 = dx * dx + dh * dh;
+    /* |d| < 2^27: 32-bit values, their squares fit */
+    const int64_t d2 = square_wide((int32_t)(px - x)) + square_wide((int32_t)(ph - h));
     if (d2 < best->dist2) {
         best->dist2 = d2;
         best->g = g;
@@ -377,8 +377,9 @@ static void solve_branch(planar_t *pl, int32_t xq, int32_t wp, int32_t z, int32_
 
 static int64_t dist2_um(const xgo_vec3_t *a, int32_t x, int32_t y, int32_t z)
 {
-    int64_t dx = (int64_t)a->x - x, dy = (int64_t)a->y - y, dz = (int64_t)a->z - z;
-    return dx * dx + dy * dy + dz * dz; /* all within ~2^21: fits */
+    /* all within ~2^21 (a foot near the leg, a target within ~1 m): 32-bit
+     * values whose squares fit */
+    return square_wide(a->x - x) + square_wide(a->y - y) + square_wide(a->z - z);
 }
 
 /* Squared distance (um^2) of a branch's foot from the target (x, y, z),
