@@ -545,10 +545,11 @@ static uint32_t div_shifted(uint32_t n, uint32_t d, uint32_t *rem)
 #endif
 
 #if XGO_CORE_NARROW_CPU
-/* round(2^22 / (128 + k)), k = 0..128: 2^45 / x at the 128 equal steps of
+/* round(2^22 / (128 + k)), k = 0..129: 2^45 / x at the 128 equal steps of
  * x in [2^30, 2^31] (the chord between two entries is at most half a unit
- * above the curve). */
-static const uint16_t recip_tab[129] = {
+ * above the curve). The entry past 2^31 is read only at x = 2^31 itself (a
+ * diagonal, where the residual is 0), with weight 0, but it must exist. */
+static const uint16_t recip_tab[130] = {
     32768, 32514, 32264, 32018, 31775, 31536, 31301, 31069, 30840, 30615, 30394, 30175, 29959,
     29747, 29537, 29331, 29127, 28926, 28728, 28533, 28340, 28150, 27962, 27777, 27594, 27414,
     27236, 27060, 26887, 26715, 26546, 26379, 26214, 26052, 25891, 25732, 25575, 25420, 25267,
@@ -558,7 +559,7 @@ static const uint16_t recip_tab[129] = {
     20361, 20262, 20165, 20068, 19973, 19878, 19784, 19692, 19600, 19508, 19418, 19329, 19240,
     19152, 19065, 18979, 18893, 18809, 18725, 18641, 18559, 18477, 18396, 18316, 18236, 18157,
     18079, 18001, 17924, 17848, 17772, 17697, 17623, 17549, 17476, 17404, 17332, 17261, 17190,
-    17120, 17050, 16981, 16913, 16845, 16777, 16710, 16644, 16578, 16513, 16448, 16384,
+    17120, 17050, 16981, 16913, 16845, 16777, 16710, 16644, 16578, 16513, 16448, 16384, 16320,
 };
 
 /* One step of restoring division: the next quotient bit. */
@@ -573,10 +574,11 @@ static const uint16_t recip_tab[129] = {
     } while (0)
 #endif
 
-/* floor(m * 2^29 / e) for m * 2^6 <= e < 2^31: the residual ratio, at most
+/* floor(m * 2^29 / e) for m * 2^6 <= e <= 2^31 (2^31 only on a diagonal,
+ * with m = 0): the residual ratio, at most
  * 2^23. Exact on every target (same result): one instruction on a 64-bit
  * host, two 16-bit digit steps with a 32-bit divider, a 24-step restoring
- * division without one (the remainder stays below e < 2^31). */
+ * division without one (the remainder stays below e). */
 static uint32_t residual_q29(uint32_t m, uint32_t e)
 {
 #if XGO_CORE_DIV64_NATIVE
@@ -627,7 +629,7 @@ static uint32_t atan_octant(uint32_t ux, uint32_t uy)
 {
     const uint32_t i = nearest_node(uy, ux);
     const int32_t ey = (int32_t)(uy << 5) - (int32_t)(i * ux); /* |ey| <= ux / 2 */
-    const uint32_t ex = (ux << 5) + i * uy;                       /* [2^29, 2^31) */
+    const uint32_t ex = (ux << 5) + i * uy;                       /* [2^29, 2^31] */
     const uint32_t m = ey < 0 ? (uint32_t)-ey : (uint32_t)ey;
     uint32_t q = residual_q29(m, ex); /* e in Q29, < 2^23 (0 on the axes and diagonals) */
     uint32_t u, w, c, ah, al, b;
