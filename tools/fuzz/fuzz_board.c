@@ -188,9 +188,10 @@ static void drain(fuzz_run_t *r)
     fuzz_promises_drain(&r->promises, out, n, r->now_ms);
 }
 
-/* Byte 0: bit 0 Lite, bits 1-2 the silence timeout, bit 3 through the
- * device layer, bits 4-7 the battery (0..15 -> 0..100 %: the API takes at
- * most 100, more is a caller bug that XGO_ASSERT stops). */
+/* Byte 0 (program.h): bit 0 Lite, bits 1-2 the silence timeout, bit 3
+ * through the device layer, bits 4-6 the battery (0..7 -> 0..100 %: the
+ * API takes at most 100, more is a caller bug that XGO_ASSERT stops), bit 7
+ * the Mini2 (its arm is fuzzed only on that model). */
 static void start(fuzz_run_t *r, uint8_t config)
 {
     static const uint32_t k_timeouts[4] = {0, 5, XGO_PARSER_DEFAULT_TIMEOUT_MS, 200};
@@ -199,9 +200,9 @@ static void start(fuzz_run_t *r, uint8_t config)
     static xgo_port_t port;
     xgo_board_config_t cfg;
     xgo_board_default_config(&cfg);
-    cfg.model = (config & 1u) ? XGO_MODEL_LITE : XGO_MODEL_MINI;
+    cfg.model = (config & FUZZ_CONFIG_MINI2) ? XGO_MODEL_MINI2 : (config & 1u) ? XGO_MODEL_LITE : XGO_MODEL_MINI;
     cfg.parser_timeout_ms = k_timeouts[(config >> 1) & 3u];
-    cfg.battery_pct = (uint8_t)((config >> 4) * 100u / 15u);
+    cfg.battery_pct = (uint8_t)(((config >> 4) & 7u) * 100u / 7u);
     if (config & FUZZ_CONFIG_DEVICE) {
         fuzz_device_init(&device, &port, &cfg);
         r->device = &device;

@@ -3,7 +3,8 @@
  *
  * Byte 0 configures the board (bit 0: Lite instead of Mini; bits 1-2: the
  * silence timeout 0, 5, 20 or 200 ms; bit 3: run it inside the device layer
- * through a port; bits 4-7: the initial battery, x 7 %, at most 100).
+ * through a port; bits 4-6: the initial battery, 0..7 -> 0..100 %; bit 7:
+ * a Mini2 with its arm, whatever bit 0 says).
  * The rest is a sequence of operations, each an op byte (taken modulo
  * FUZZ_OP_COUNT) followed by its operands; a program that ends inside an
  * operand reads zeros. Well-formed frames are built by the core's encoder,
@@ -31,6 +32,7 @@ typedef enum fuzz_op_e {
 } fuzz_op_t;
 
 #define FUZZ_CONFIG_DEVICE 0x08u /* byte 0: through xgo/port.h */
+#define FUZZ_CONFIG_MINI2 0x80u  /* byte 0: the Mini2 (the arm) */
 
 /* Ticks run by FUZZ_OP_TICKS k. */
 #define FUZZ_TICKS(k) (1u + 8u * (unsigned)(k))

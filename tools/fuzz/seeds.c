@@ -280,6 +280,30 @@ static void seed_bad_wire(seed_t *s, unsigned arg)
     read_regs(s, 0xF0, 0x20);
 }
 
+/* The Mini2's arm: a point (x, z), a polar point, the claw, the two arm
+ * servos by angle, the arm's mode while walking; everything read back. */
+static void seed_arm(seed_t *s, unsigned arg)
+{
+    static const uint8_t points[3][2] = {{0xC0, 0x80}, {0x00, 0xFF}, {0xFF, 0x00}};
+    static const uint8_t servos[2] = {0x20, 0xE0};
+    write1(s, XGO_REG_ARM_SPEED, (uint8_t)(0x40u + 0x40u * arg));
+    write_n(s, XGO_REG_ARM_X, points[arg % 3u], 2);
+    run_ms(s, 1200);
+    write_n(s, XGO_REG_ARM_THETA, points[(arg + 1u) % 3u], 2);
+    write1(s, XGO_REG_CLAW, (uint8_t)(arg ? 0xFF : 0x00));
+    run_ms(s, 1200);
+    write_n(s, XGO_REG_ARM_ELBOW, servos, 2);
+    run_ms(s, 800);
+    write1(s, XGO_REG_ARM_MODE, 1);
+    write_n(s, XGO_REG_VX, (const uint8_t *)"\xE0\x80\xA0", 3);
+    run_ms(s, 1500);
+    write1(s, XGO_REG_ARM_MODE, 0);
+    write_n(s, XGO_REG_VX, (const uint8_t *)"\x80\x80\x80", 3);
+    run_ms(s, 500);
+    read_regs(s, XGO_REG_ARM_ELBOW, 2);
+    read_regs(s, XGO_REG_CLAW, 7);
+}
+
 typedef struct recipe_s {
     const char *name;
     void (*build)(seed_t *s, unsigned arg);
@@ -287,9 +311,11 @@ typedef struct recipe_s {
     uint8_t config;       /* byte 0 */
 } recipe_t;
 
-/* Byte 0: (battery / 7) << 4 | device << 3 | timeout << 1 | lite. */
-#define CFG(lite, timeout, battery) (uint8_t)(((battery) / 7u) << 4 | (timeout) << 1 | (lite))
+/* Byte 0 (program.h): the battery's nearest of 0..7 sevenths << 4 |
+ * timeout << 1 | lite; DEVICE and MINI2 or-ed in. */
+#define CFG(lite, timeout, battery) (uint8_t)((((battery) * 7u + 50u) / 100u) << 4 | (timeout) << 1 | (lite))
 #define DEVICE FUZZ_CONFIG_DEVICE
+#define MINI2 FUZZ_CONFIG_MINI2
 
 static const recipe_t k_recipes[] = {
     {"spec", seed_spec, 0, 0, CFG(0, 2, 100)},
@@ -310,6 +336,10 @@ static const recipe_t k_recipes[] = {
     {"refused", seed_refused, 0, 0, CFG(0, 0, 100)},
     {"bad-wire", seed_bad_wire, 0, 0, CFG(0, 1, 100)},
     {"bad-wire-no-timeout", seed_bad_wire, 0, 0, CFG(1, 0, 100)},
+    {"arm-mini2", seed_arm, 0, 2, CFG(0, 2, 100) | MINI2},
+    {"walk-mini2", seed_walk, 0, 3, CFG(0, 2, 100) | MINI2},
+    {"action-mini2", seed_action, 1, XGO_ACTION_LAST, CFG(0, 2, 100) | MINI2},
+    {"views-mini2", seed_views, 0, 0, CFG(0, 3, 60) | MINI2},
     /* the same through the device layer (xgo/port.h) */
     {"device-spec", seed_spec, 0, 0, CFG(0, 2, 100) | DEVICE},
     {"device-walk", seed_walk, 0, 3, CFG(0, 2, 100) | DEVICE},
@@ -317,6 +347,7 @@ static const recipe_t k_recipes[] = {
     {"device-calibrate", seed_unload_calibrate, 0, 0, CFG(0, 2, 100) | DEVICE},
     {"device-views", seed_views, 0, 0, CFG(0, 3, 100) | DEVICE},
     {"device-bad-wire", seed_bad_wire, 0, 0, CFG(1, 1, 100) | DEVICE},
+    {"device-arm-mini2", seed_arm, 1, 1, CFG(0, 2, 100) | DEVICE | MINI2},
 };
 
 /* The recipe and argument of seed i, or NULL. */
