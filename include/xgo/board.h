@@ -95,17 +95,25 @@ typedef struct xgo_trace_event_s {
 
 typedef void (*xgo_trace_fn)(void *ctx, const xgo_trace_event_t *event);
 
+/* An index into the transmit buffer: a byte when the buffer is no longer
+ * (the firmware images': with the source below, 4 bytes of the board less). */
+#if XGO_TX_BUFFER_SIZE <= 255u
+typedef uint8_t xgo_tx_index_t;
+#else
+typedef uint16_t xgo_tx_index_t;
+#endif
+
 typedef struct xgo_board_s {
     xgo_board_config_t config;
     xgo_parser_t parser;
     xgo_regs_t regs;
-    uint8_t tx[XGO_TX_BUFFER_SIZE]; /* ring buffer of reply bytes */
-    uint16_t tx_head;               /* index of the oldest byte */
-    uint16_t tx_len;
+    uint8_t tx[XGO_TX_BUFFER_SIZE]; /* queue of reply bytes (board.c) */
+    xgo_tx_index_t tx_head;         /* index of the oldest byte */
+    xgo_tx_index_t tx_len;
+    uint8_t source;                 /* xgo_source_t of the frame being handled */
     uint32_t tx_overflows;
     uint32_t framing_errors;        /* bytes the UART received with a bad stop bit */
     uint32_t ticks;
-    uint8_t source;                 /* xgo_source_t of the frame being handled */
     xgo_motion_t motion;
     xgo_trace_fn trace;
     void *trace_ctx;

@@ -56,8 +56,11 @@ typedef struct xgo_regs_s {
     uint8_t turn_to[2];              /* last heading command at 0x3F, int16 BE */
     uint8_t servo_cmd[12];           /* servo-mode commands written to 0x50..0x5B
                                         (mem there: the joints as they are) */
+#if XGO_WITH_MINI2
     uint8_t servo_speed;             /* last value written to 0x5C (on the Mini2
-                                        0x5C reads the claw instead) */
+                                        0x5C reads the claw instead; without the
+                                        Mini2 the image's 0x5C is that value) */
+#endif
     uint8_t arm;                     /* the model has the arm: XGO_REGF_ARM rows */
     uint8_t any_written;             /* a flag of `written` was set since the last
                                         xgo_regs_take_any_written (in padding) */
@@ -253,6 +256,9 @@ typedef struct xgo_motion_s {
     uint8_t perform_last;     /* the action perform mode started last */
     uint8_t calibration;
     uint8_t action_id;        /* running preset action (incl. 255 reset), 0 none */
+    uint8_t contact;          /* bit leg: foot on the ground this tick */
+    uint8_t feet_as_solved;   /* the joints are where the last IK put them, all feet
+                                 reached: the feet are ik_cache's (xgo_motion_feet_body) */
     xgo_gait_t gait;
     xgo_action_player_t actions;
     xgo_servos_t servos;
@@ -265,10 +271,6 @@ typedef struct xgo_motion_s {
     uint32_t periodic_phase[6]; /* roll, pitch, yaw, x, y, z (xgo_bam_t) */
     int32_t stab_mdeg[2];     /* self-stabilisation roll, pitch correction */
     uint32_t nv_changes;      /* counts changes of non-volatile data */
-    uint8_t contact;          /* bit leg: foot on the ground this tick */
-    uint8_t feet_as_solved;   /* the joints are where the last IK put them, all feet
-                                 reached: the feet are ik_cache's (xgo_motion_feet_body) */
-    xgo_odometry_t odom;      /* world pose from the planted feet */
     xgo_heading_t heading;    /* turn to heading (0x3F) and its origin (0x06) */
     xgo_inertial_t inertial;  /* accelerometer and gyroscope (0x65) */
     xgo_arm_t arm;            /* the Mini2's arm and claw */
@@ -282,6 +284,8 @@ typedef struct xgo_motion_s {
     int32_t stroke_margin_um; /* added to the stroke after a planted foot ran out of reach */
     uint8_t stroke_walks;     /* the command walks (stroke is its) */
     uint8_t stroke_on;        /* stroke applies (walking, or still stopping) */
+    xgo_odometry_t odom;      /* world pose from the planted feet (here: without the
+                                 option one byte, in what is padding after the flags) */
     uint32_t clamped_pose_ticks; /* whole-unit ticks whose pose is not the one asked (reach.h) */
     uint32_t reach_clamped_ticks; /* ticks with the body pose or the arm's point out of reach
                                      (diagnostic reach_clamped) */

@@ -62,6 +62,14 @@ extern "C" {
 #define XGO_PORT_NV_SETTLE_TICKS (XGO_TICK_HZ / 5u)
 #endif
 
+/* Both are counted in bytes of the device (xgo_device_t below). */
+#if XGO_PORT_MAX_CATCHUP_TICKS < 1u || XGO_PORT_MAX_CATCHUP_TICKS > 255u
+#error "XGO_PORT_MAX_CATCHUP_TICKS must be 1..255"
+#endif
+#if XGO_PORT_NV_SETTLE_TICKS < 1u || XGO_PORT_NV_SETTLE_TICKS > 255u
+#error "XGO_PORT_NV_SETTLE_TICKS must be 1..255"
+#endif
+
 #if (XGO_PORT_RX_RING_SIZE & (XGO_PORT_RX_RING_SIZE - 1u)) != 0 || \
     XGO_PORT_RX_RING_SIZE < 16u || XGO_PORT_RX_RING_SIZE > 32768u
 #error "XGO_PORT_RX_RING_SIZE must be a power of two in 16..32768"
@@ -119,22 +127,29 @@ typedef struct xgo_device_stats_s {
     uint32_t nv_save_failures;
 } xgo_device_stats_t;
 
+/* The bookkeeping comes first, the board last: every field the device and
+ * the RX interrupt touch is then within the short offsets of a Cortex-M0's
+ * loads and stores (no offset constant held in a saved register). */
 typedef struct xgo_device_s {
-    xgo_board_t board;
     xgo_port_t *port;
-    uint8_t rx_ring[XGO_PORT_RX_RING_SIZE];
     volatile uint16_t rx_head;        /* next byte to store: producer only */
     volatile uint16_t rx_tail;        /* next byte to feed: consumer only */
     volatile uint8_t rx_paused;       /* the producer found the ring full */
     uint8_t hangup_pending;           /* xgo_device_hangup() waits for the ring */
-    volatile uint32_t tick_signals;   /* control periods elapsed: producer only */
-    uint32_t tick_taken;              /* ... of which handled (run or skipped) */
+    uint8_t ticks_now;                /* ticks xgo_device_run still runs this call
+                                         (<= XGO_PORT_MAX_CATCHUP_TICKS) */
+    uint8_t nv_quiet_ticks;           /* ticks since the NV data last moved
+                                         (<= XGO_PORT_NV_SETTLE_TICKS) */
+    volatile uint32_t tick_signals;   /* control periods elapsed: producer only;
+                                         handled (run or skipped): stats.ticks +
+                                         stats.ticks_skipped */
     uint32_t nv_changes_saved;        /* xgo_board_nv_changes() at the last save */
     uint32_t nv_changes_seen;         /* ... when last looked at */
-    uint32_t nv_quiet_ticks;          /* ticks since it last moved */
     uint32_t wire_ms;                 /* the parser's clock (see device.c) */
     uint32_t wire_seen_ms;            /* xgo_port_millis() when last read */
     xgo_device_stats_t stats;
+    uint8_t rx_ring[XGO_PORT_RX_RING_SIZE];
+    xgo_board_t board;
 } xgo_device_t;
 
 /* Initialises the board (cfg may be NULL for the defaults) and restores the

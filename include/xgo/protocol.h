@@ -116,11 +116,11 @@ typedef enum xgo_parser_side_e {
 
 typedef struct xgo_parser_s {
     uint8_t buf[XGO_PARSER_FRAME_MAX]; /* the candidate frame (xgo/config.h) */
-    uint16_t end;        /* bytes held */
-    uint16_t checked;    /* prefix of buf already validated as a frame candidate */
+    uint8_t end;         /* bytes held (never more than a LEN byte: <= 255) */
+    uint8_t checked;     /* prefix of buf already validated as a frame candidate */
+    uint8_t side;        /* xgo_parser_side_t */
     uint32_t last_rx_ms; /* time of the last byte fed */
     uint32_t timeout_ms; /* 0 disables the silence timeout */
-    uint8_t side;        /* xgo_parser_side_t */
     xgo_parser_sink_t sink;
     xgo_parser_stats_t stats;
 } xgo_parser_t;

@@ -92,8 +92,8 @@ size_t xgo_board_transmit(xgo_board_t *b, uint8_t *out, size_t max)
         return 0;
     }
     memcpy(out, &b->tx[b->tx_head], n);
-    b->tx_len = (uint16_t)(b->tx_len - n);
-    b->tx_head = (uint16_t)(b->tx_len == 0 ? 0u : b->tx_head + n);
+    b->tx_len = (xgo_tx_index_t)(b->tx_len - n);
+    b->tx_head = (xgo_tx_index_t)(b->tx_len == 0 ? 0u : b->tx_head + n);
     return n;
 }
 
@@ -141,7 +141,7 @@ static uint8_t count_unmapped(const xgo_regs_t *r, const xgo_frame_t *f)
 static void reply_queued(xgo_board_t *b, uint8_t *frame, uint8_t addr, size_t n)
 {
     xgo_frame_t reply;
-    b->tx_len = (uint16_t)(b->tx_len + xgo_frame_seal(XGO_TYPE_READ_REPLY, addr, n, frame));
+    b->tx_len = (xgo_tx_index_t)(b->tx_len + xgo_frame_seal(XGO_TYPE_READ_REPLY, addr, n, frame));
     reply.type = XGO_TYPE_READ_REPLY;
     reply.addr = addr;
     reply.len = (uint8_t)n;

@@ -7,7 +7,7 @@
  * size being a power of two no larger than 32768). A 16-bit aligned store is
  * atomic on every target we build for, so no lock is needed. Control periods
  * work the same way: the timer interrupt counts tick_signals up, the main
- * loop counts tick_taken behind it.
+ * loop counts behind it the ticks it ran and those it skipped (its stats).
  */
 #include "xgo/port.h"
 
@@ -166,17 +166,28 @@ XGO_OWN_FRAME static void track_nv(xgo_device_t *d)
     }
 }
 
+/* Control periods signalled and not yet handled (run or skipped): the
+ * device keeps no count of its own for them. */
+static uint32_t ticks_owed(const xgo_device_t *d)
+{
+    return d->tick_signals - (d->stats.ticks + d->stats.ticks_skipped);
+}
+
+/* The ticks due when called, at most XGO_PORT_MAX_CATCHUP_TICKS of them (a
+ * longer stall's are skipped). Their count is kept in the device, not in a
+ * register across the tick: only d is, so xgo_device_run's frame under
+ * every tick (the deepest stack path) holds one saved register. */
 static void run_due_ticks(xgo_device_t *d)
 {
-    uint32_t due = d->tick_signals - d->tick_taken;
+    uint32_t due = ticks_owed(d);
     if (due > XGO_PORT_MAX_CATCHUP_TICKS) {
         d->stats.ticks_skipped += due - XGO_PORT_MAX_CATCHUP_TICKS;
-        d->tick_taken += due - XGO_PORT_MAX_CATCHUP_TICKS;
         due = XGO_PORT_MAX_CATCHUP_TICKS;
     }
-    for (; due > 0; due--) {
+    d->ticks_now = (uint8_t)due;
+    while (d->ticks_now > 0) {
+        d->ticks_now--;
         xgo_board_tick(&d->board);
-        d->tick_taken++;
         d->stats.ticks++;
         write_servos(d);
         track_nv(d);
@@ -246,7 +257,7 @@ void xgo_device_run(xgo_device_t *d)
 
 int xgo_device_idle(xgo_device_t *d)
 {
-    if (d->tick_signals != d->tick_taken) {
+    if (ticks_owed(d) != 0) {
         return 0;
     }
     if (d->rx_head != d->rx_tail && reply_room(d) > 0) {

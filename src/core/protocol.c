@@ -112,7 +112,7 @@ static void count_drop(xgo_parser_t *p, xgo_drop_reason_t reason)
 static void consume(xgo_parser_t *p, size_t n)
 {
     memmove(p->buf, p->buf + n, p->end - n);
-    p->end = (uint16_t)(p->end - n);
+    p->end = (uint8_t)(p->end - n);
     p->checked = 0;
 }
 
@@ -204,7 +204,7 @@ static void complete(xgo_parser_t *p)
 static void scan(xgo_parser_t *p)
 {
     while (p->checked < p->end) {
-        const uint16_t pos = p->checked;
+        const uint8_t pos = p->checked;
         const uint8_t byte = p->buf[pos];
         p->checked++;
         switch (pos) {

@@ -275,7 +275,9 @@ static void load_initial(xgo_regs_t *r, int power_up)
         }
         memset(&r->mem[d->addr], d->initial, d->width);
     }
+#if XGO_WITH_MINI2
     r->servo_speed = desc_at(r, XGO_REG_SERVO_SPEED)->initial;
+#endif
 }
 
 void xgo_regs_init(xgo_regs_t *r, const char *firmware, uint8_t version)
@@ -321,9 +323,15 @@ const xgo_reg_desc_t *xgo_regs_find(const xgo_regs_t *r, uint8_t addr)
     return desc_at(r, addr);
 }
 
+/* Without the Mini2 no model publishes a claw at 0x5C: the image holds
+ * the last value written there (or the initial one), so no copy is kept. */
 uint8_t xgo_regs_servo_speed(const xgo_regs_t *r)
 {
+#if XGO_WITH_MINI2
     return r->servo_speed;
+#else
+    return r->mem[XGO_REG_SERVO_SPEED];
+#endif
 }
 
 /* The turn command at 0x3F is two bytes wide but the foot register 0x40
@@ -397,9 +405,11 @@ static void apply_write(xgo_regs_t *r, uint8_t addr, const uint8_t *data, size_t
         }
         r->mem[a] = data[i];
         mark_written(r, (uint8_t)a);
+#if XGO_WITH_MINI2
         if (a == XGO_REG_SERVO_SPEED) {
             r->servo_speed = data[i];
         }
+#endif
     }
 }
 
