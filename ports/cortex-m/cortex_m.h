@@ -12,8 +12,10 @@
 
 #define XGO_CM_REG(addr) (*(volatile uint32_t *)(uintptr_t)(addr))
 
-/* NVIC: set-enable registers, one bit per external interrupt. */
+/* NVIC: set-enable and set-pending registers, one bit per external
+ * interrupt. */
 #define XGO_CM_NVIC_ISER(n) XGO_CM_REG(0xE000E100u + 4u * (n))
+#define XGO_CM_NVIC_ISPR(n) XGO_CM_REG(0xE000E200u + 4u * (n))
 /* SysTick: control/status, reload, current value. */
 #define XGO_CM_SYST_CSR XGO_CM_REG(0xE000E010u)
 #define XGO_CM_SYST_RVR XGO_CM_REG(0xE000E014u)
@@ -46,7 +48,9 @@ void xgo_cm_unexpected_handler(void);
          xgo_cm_unexpected_handler, (systick)}                                           \
     }
 
-/* The port's entry point, called by Reset_Handler once RAM is set up. */
+/* The port's entry point, called by Reset_Handler once RAM is set up
+ * (Reset_Handler keeps no frame under it). It must not return: it ends in
+ * xgo_cm_serve. */
 int main(void);
 
 static inline void xgo_cm_irq_disable(void)
@@ -62,7 +66,19 @@ static inline void xgo_cm_irq_enable(void)
 /* Serves forever: runs the device's work, and sleeps (WFI) whenever it has
  * none. The idle check and the WFI happen with interrupts masked: an
  * interrupt arriving in between stays pending and ends the WFI at once, so
- * no byte or tick waits for the next interrupt. */
-void xgo_cm_serve(xgo_device_t *d);
+ * no byte or tick waits for the next interrupt. Inline, in main: main's is
+ * then the only frame between the reset and xgo_device_run, under every
+ * control tick (the deepest stack path, tools/mcu/fw_check.sh). */
+__attribute__((always_inline, noreturn)) static inline void xgo_cm_serve(xgo_device_t *d)
+{
+    for (;;) {
+        xgo_cm_irq_disable();
+        if (xgo_device_idle(d)) {
+            __asm__ volatile("wfi" ::: "memory");
+        }
+        xgo_cm_irq_enable();
+        xgo_device_run(d);
+    }
+}
 
 #endif /* XGO_PORT_CORTEX_M_H */

@@ -3,7 +3,7 @@
  * Cortex-M port. Reset_Handler copies .data from flash, zeroes .bss and
  * paints the free RAM below the stack with a pattern, so a debugger (or
  * QEMU's monitor: tools/mcu/fw_stack.sh) can read how deep the stack ever
- * went; then it calls the port's main().
+ * went; then it calls the port's main(), which serves forever.
  */
 #include "cortex_m.h"
 #include "semihost.h"
@@ -12,7 +12,10 @@
 
 extern uint32_t _sidata, _sdata, _edata, _sbss, _ebss;
 
-void Reset_Handler(void)
+/* Reset_Handler's C part (its own frame, gone before main runs). */
+void xgo_cm_ram_init(void);
+
+void xgo_cm_ram_init(void)
 {
     const uint32_t *src = &_sidata;
     uint32_t *dst = &_sdata;
@@ -28,8 +31,17 @@ void Reset_Handler(void)
     for (dst = &_ebss; (uintptr_t)dst < sp - 32u; dst++) {
         *dst = STACK_PAINT;
     }
-    (void)main();
-    xgo_sh_exit(0);
+}
+
+/* Naked: nothing of it stays on the stack under main, whose calls are the
+ * deepest stack path (tools/mcu/fw_check.sh; a C function would keep its
+ * saved registers there: ARMv6-M's compiler makes no tail call). main
+ * serves forever; should it return, the core stops here. */
+__attribute__((naked)) void Reset_Handler(void)
+{
+    __asm__ volatile("bl xgo_cm_ram_init\n"
+                     "bl main\n"
+                     "b .\n");
 }
 
 static void put_hex32(char *out, uint32_t v)
@@ -69,16 +81,4 @@ void xgo_cm_unexpected_handler(void)
 {
     xgo_sh_write0("xgo-fw: unexpected exception or interrupt\n");
     xgo_sh_exit(92);
-}
-
-void xgo_cm_serve(xgo_device_t *d)
-{
-    for (;;) {
-        xgo_cm_irq_disable();
-        if (xgo_device_idle(d)) {
-            __asm__ volatile("wfi" ::: "memory");
-        }
-        xgo_cm_irq_enable();
-        xgo_device_run(d);
-    }
 }

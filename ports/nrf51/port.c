@@ -100,39 +100,48 @@ xgo_qemu_board_t *xgo_port_qemu_board(xgo_port_t *p)
 
 /* ---- interrupts --------------------------------------------------------- */
 
+/* One byte an entry: while the FIFO holds more, reading RXD raises RXDRDY
+ * again and the interrupt is taken again. No loop: the handler keeps only
+ * its return address on the stack (tools/mcu/fw_check.sh adds the deepest
+ * handler to the bound). */
 static void uart0_irq(void)
 {
-    while (UART0_EVENTS_RXDRDY) {
-        /* Full ring: hold the line (the FIFO keeps the bytes). Checked
-         * first: a byte arriving while the handler ran leaves the
-         * interrupt pending, so it runs once more after masking. */
-        if (!xgo_device_rx_accepting(&device)) {
-            UART0_INTENCLR = UART_INT_RXDRDY;
-            break;
-        }
-        /* Clear first: reading RXD raises it again while the FIFO has more. */
-        UART0_EVENTS_RXDRDY = 0;
-        (void)xgo_device_rx_put(&device, (uint8_t)UART0_RXD);
-    }
+    /* Asked before anything: no value is kept across the call. A full ring
+     * holds the line (the FIFO keeps the bytes); checked before every byte:
+     * a byte arriving while the handler ran leaves the interrupt pending,
+     * so it runs once more after masking. */
+    const int accepting = xgo_device_rx_accepting(&device);
     if (UART0_EVENTS_TXDRDY) {
         UART0_INTENCLR = UART_INT_TXDRDY; /* only a wake-up for the loop */
     }
+    if (!UART0_EVENTS_RXDRDY) {
+        return;
+    }
+    if (!accepting) {
+        UART0_INTENCLR = UART_INT_RXDRDY;
+        return;
+    }
+    /* Clear first: reading RXD raises it again while the FIFO has more. */
+    UART0_EVENTS_RXDRDY = 0;
+    (void)xgo_device_rx_put(&device, (uint8_t)UART0_RXD);
 }
 
 /* One period per compare; if the handler ran late past the next compare,
- * the periods missed are signalled now and the compare skips ahead, so the
- * tick rate holds on average and the timer never waits for a wrap. */
+ * it sets itself pending again and runs once more at once for each period
+ * missed, so the tick rate holds on average and the timer never waits for
+ * a wrap. No loop: nothing is kept across the call, the handler's frame is
+ * its return address (tools/mcu/fw_check.sh adds the deepest handler to
+ * the bound). */
 static void timer0_irq(void)
 {
-    uint32_t next = TIMER0_CC0;
     TIMER0_EVENTS_COMPARE0 = 0;
-    do {
-        next += TICK_US;
-        port.ms += 1000u / XGO_TICK_HZ;
-        xgo_device_tick_due(&device);
-        TIMER0_CC0 = next;
-        TIMER0_TASKS_CAPTURE1 = 1;
-    } while ((int32_t)(TIMER0_CC1 - next) >= 0);
+    TIMER0_CC0 += TICK_US;
+    port.ms += 1000u / XGO_TICK_HZ;
+    TIMER0_TASKS_CAPTURE1 = 1;
+    if ((int32_t)(TIMER0_CC1 - TIMER0_CC0) >= 0) {
+        XGO_CM_NVIC_ISPR(0) = 1u << TIMER0_IRQ; /* the next compare passed already */
+    }
+    xgo_device_tick_due(&device);
 }
 
 #define U xgo_cm_unexpected_handler

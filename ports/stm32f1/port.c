@@ -111,26 +111,31 @@ xgo_qemu_board_t *xgo_port_qemu_board(xgo_port_t *p)
 
 /* ---- interrupts --------------------------------------------------------- */
 
+/* One byte an entry: while RXNE stays set the interrupt is taken again (the
+ * USART holds one byte). Every interrupt has the same priority, none
+ * preempts another, so CR1 is changed here without masking; the byte is
+ * stored last, a tail call: the handler keeps one frame of 8 bytes on the
+ * stack (tools/mcu/fw_check.sh adds the deepest handler to the bound). */
 static void usart1_irq(void)
 {
-    uint32_t sr = USART1_SR;
-    while (sr & USART_SR_RXNE) {
-        /* Full ring: hold the line (the USART keeps the byte). Checked
-         * first: a byte arriving while the handler ran leaves the
-         * interrupt pending, so it runs once more after masking. */
-        if (!xgo_device_rx_accepting(&device)) {
-            usart_cr1_update(0, USART_CR1_RXNEIE);
-            break;
-        }
-        if (sr & USART_SR_ORE) {
-            port.rx_overruns++;
-        }
-        (void)xgo_device_rx_put(&device, (uint8_t)USART1_DR);
-        sr = USART1_SR;
-    }
+    const uint32_t sr = USART1_SR;
     if ((USART1_CR1 & USART_CR1_TXEIE) && (sr & USART_SR_TXE)) {
-        usart_cr1_update(0, USART_CR1_TXEIE); /* only a wake-up for the loop */
+        USART1_CR1 &= ~USART_CR1_TXEIE; /* only a wake-up for the loop */
     }
+    if ((sr & USART_SR_RXNE) == 0) {
+        return;
+    }
+    /* Full ring: hold the line (the USART keeps the byte). Checked first:
+     * a byte arriving while the handler ran leaves the interrupt pending,
+     * so it runs once more after masking. */
+    if (!xgo_device_rx_accepting(&device)) {
+        USART1_CR1 &= ~USART_CR1_RXNEIE;
+        return;
+    }
+    if (sr & USART_SR_ORE) {
+        port.rx_overruns++;
+    }
+    (void)xgo_device_rx_put(&device, (uint8_t)USART1_DR);
 }
 
 static void systick_irq(void)
