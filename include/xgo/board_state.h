@@ -42,9 +42,23 @@ typedef struct xgo_regs_stats_s {
  * the rest is unmapped and reads 0 (108 bytes of RAM). */
 #define XGO_REGS_STORED 0x94u
 
+/* Without the Mini2 no model has a register at 0x6C..0x7F (the arm's are
+ * there): the image skips them, addresses above sit 0x14 lower in mem and
+ * in written (regs.c; 23 bytes of RAM). With it, the image is flat. */
+#if XGO_WITH_MINI2
+#define XGO_REGS_GAP_START XGO_REGS_STORED
+#define XGO_REGS_GAP_END XGO_REGS_STORED
+#else
+#define XGO_REGS_GAP_START 0x6Cu
+#define XGO_REGS_GAP_END 0x80u
+#endif
+#define XGO_REGS_IMAGE_LEN (XGO_REGS_STORED - (XGO_REGS_GAP_END - XGO_REGS_GAP_START))
+
 typedef struct xgo_regs_s {
-    uint8_t mem[XGO_REGS_STORED];    /* flat image; unmapped addresses stay 0 */
-    uint8_t written[(XGO_REGS_STORED + 7u) / 8u]; /* bit per address: written since last taken */
+    uint8_t mem[XGO_REGS_IMAGE_LEN]; /* the image (0x00..0x93 but the gap above);
+                                        unmapped addresses stay 0 */
+    uint8_t written[(XGO_REGS_IMAGE_LEN + 7u) / 8u]; /* bit per stored address (as mem):
+                                                        written since last taken */
     char firmware_at_gait;           /* the firmware string's byte at 0x09, where the
                                         image has the gait type (the rest of the
                                         string is in the image, read-only) */

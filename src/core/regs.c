@@ -85,6 +85,32 @@ XGO_REG_LIST(REG_STORED_)
 #undef REG_STORED_
 typedef char xgo_regs_diag_above_stored_[XGO_REG_DIAG >= XGO_REGS_STORED ? 1 : -1];
 
+/* Only the arm's rows lie in the image's gap (XGO_REGS_GAP_START..END,
+ * xgo/board_state.h: there is one only without the Mini2, whose rows are
+ * then never this model's). */
+#define REG_OUT_OF_GAP_(id, a, w, acc, fl, init, v, l, h, nm)                                  \
+    typedef char xgo_reg_out_of_gap_##id##_[(((XGO_REGF_##fl + 0u) & XGO_REGF_ARM) != 0u ||    \
+                                             (unsigned)(a) + (unsigned)(w) <=                  \
+                                                 XGO_REGS_GAP_START ||                         \
+                                             (unsigned)(a) >= XGO_REGS_GAP_END)                \
+                                                ? 1                                            \
+                                                : -1];
+XGO_REG_LIST(REG_OUT_OF_GAP_)
+#undef REG_OUT_OF_GAP_
+
+/* Where a stored address (below XGO_REGS_STORED, not in the gap) sits in
+ * mem and in written: the addresses above the gap sit lower by its length
+ * (with the Mini2 there is none: the address itself). */
+static unsigned slot(unsigned addr)
+{
+#if XGO_REGS_GAP_START == XGO_REGS_GAP_END
+    return addr;
+#else
+    XGO_ASSERT(addr < XGO_REGS_GAP_START || (addr >= XGO_REGS_GAP_END && addr < XGO_REGS_STORED));
+    return addr < XGO_REGS_GAP_START ? addr : addr - (XGO_REGS_GAP_END - XGO_REGS_GAP_START);
+#endif
+}
+
 /* Where each row starts, a constant in flash rather than a per-address map
  * in every board's RAM: k_start[addr] = row + 1 for rows on every model or
  * on the models without the arm, k_start[XGO_REG_COUNT + addr] for the
@@ -176,7 +202,8 @@ int xgo_reg_value_valid(const xgo_reg_desc_t *d, uint8_t v)
 
 static void mark_written(xgo_regs_t *r, uint8_t addr)
 {
-    r->written[addr >> 3] = (uint8_t)(r->written[addr >> 3] | (1u << (addr & 7u)));
+    const unsigned s = slot(addr);
+    r->written[s >> 3] = (uint8_t)(r->written[s >> 3] | (1u << (s & 7u)));
     r->any_written = 1;
 }
 
@@ -189,21 +216,23 @@ int xgo_regs_take_any_written(xgo_regs_t *r)
 
 int xgo_regs_was_written(const xgo_regs_t *r, uint8_t addr)
 {
+    const unsigned s = slot(addr);
     XGO_ASSERT(addr < XGO_REGS_STORED);
-    return (r->written[addr >> 3] >> (addr & 7u)) & 1u;
+    return (r->written[s >> 3] >> (s & 7u)) & 1u;
 }
 
 int xgo_regs_take_written(xgo_regs_t *r, uint8_t addr)
 {
-    const uint8_t bit = (uint8_t)(1u << (addr & 7u));
-    const int was = (r->written[addr >> 3] & bit) != 0;
+    const unsigned s = slot(addr);
+    const uint8_t bit = (uint8_t)(1u << (s & 7u));
+    const int was = (r->written[s >> 3] & bit) != 0;
     XGO_ASSERT(addr < XGO_REGS_STORED);
-    r->written[addr >> 3] = (uint8_t)(r->written[addr >> 3] & ~bit);
+    r->written[s >> 3] = (uint8_t)(r->written[s >> 3] & ~bit);
     return was;
 }
 
-/* Mask of the bits of written[byte] that lie in [first, last]. */
-static uint8_t range_mask(unsigned byte, uint8_t first, uint8_t last)
+/* Mask of the bits of written[byte] that lie in slots [first, last]. */
+static uint8_t range_mask(unsigned byte, unsigned first, unsigned last)
 {
     const unsigned lo = byte == (first >> 3u) ? (first & 7u) : 0u;
     const unsigned hi = byte == (last >> 3u) ? (last & 7u) : 7u;
@@ -212,8 +241,9 @@ static uint8_t range_mask(unsigned byte, uint8_t first, uint8_t last)
 
 /* A byte of flags at a time: the motion core asks for whole register
  * groups every tick (about 50 single flags otherwise). */
-int xgo_regs_take_written_range(xgo_regs_t *r, uint8_t first, uint8_t last)
+int xgo_regs_take_written_range(xgo_regs_t *r, uint8_t first_addr, uint8_t last_addr)
 {
+    const unsigned first = slot(first_addr), last = slot(last_addr);
     unsigned byte;
     int any = 0;
     for (byte = first >> 3u; byte <= (unsigned)(last >> 3u); byte++) {
@@ -224,8 +254,9 @@ int xgo_regs_take_written_range(xgo_regs_t *r, uint8_t first, uint8_t last)
     return any;
 }
 
-int xgo_regs_was_written_range(const xgo_regs_t *r, uint8_t first, uint8_t last)
+int xgo_regs_was_written_range(const xgo_regs_t *r, uint8_t first_addr, uint8_t last_addr)
 {
+    const unsigned first = slot(first_addr), last = slot(last_addr);
     unsigned byte;
     for (byte = first >> 3u; byte <= (unsigned)(last >> 3u); byte++) {
         if (r->written[byte] & range_mask(byte, first, last)) {
@@ -273,7 +304,7 @@ static void load_initial(xgo_regs_t *r, int power_up)
         if (!power_up && ((d->flags & XGO_REGF_NONVOLATILE) != 0 || is_servo_reg(d->addr))) {
             continue; /* a reset keeps the name, and the joints read where they are */
         }
-        memset(&r->mem[d->addr], d->initial, d->width);
+        memset(&r->mem[slot(d->addr)], d->initial, d->width);
     }
 #if XGO_WITH_MINI2
     r->servo_speed = desc_at(r, XGO_REG_SERVO_SPEED)->initial;
@@ -286,12 +317,12 @@ void xgo_regs_init(xgo_regs_t *r, const char *firmware, uint8_t version)
     static const char k_default_name[] = "XGOMINI";
 
     memset(r, 0, sizeof *r);
-    r->arm = version == XGO_VERSION_MINI2;
+    r->arm = XGO_WITH_MINI2 && version == XGO_VERSION_MINI2; /* else no arm rows (the gap) */
     load_initial(r, 1);
     for (i = 0; i < XGO_REGS_STORED; i++) {
         const xgo_reg_desc_t *d = desc_at(r, (unsigned)i);
         if (d != NULL && d->access == XGO_ACCESS_R && (d->flags & XGO_REGF_COMPUTED) == 0) {
-            r->mem[i] = d->initial;
+            r->mem[slot((unsigned)i)] = d->initial;
         }
     }
     memcpy(&r->mem[XGO_REG_BT_NAME], k_default_name, sizeof k_default_name - 1);
@@ -309,13 +340,13 @@ void xgo_regs_restore_initial(xgo_regs_t *r)
 uint8_t xgo_regs_get(const xgo_regs_t *r, uint8_t addr)
 {
     XGO_ASSERT(addr < XGO_REGS_STORED);
-    return r->mem[addr];
+    return r->mem[slot(addr)];
 }
 
 void xgo_regs_set(xgo_regs_t *r, uint8_t addr, uint8_t value)
 {
     XGO_ASSERT(addr < XGO_REGS_STORED);
-    r->mem[addr] = value;
+    r->mem[slot(addr)] = value;
 }
 
 const xgo_reg_desc_t *xgo_regs_find(const xgo_regs_t *r, uint8_t addr)
@@ -330,7 +361,7 @@ uint8_t xgo_regs_servo_speed(const xgo_regs_t *r)
 #if XGO_WITH_MINI2
     return r->servo_speed;
 #else
-    return r->mem[XGO_REG_SERVO_SPEED];
+    return r->mem[slot(XGO_REG_SERVO_SPEED)];
 #endif
 }
 
@@ -389,7 +420,7 @@ static void apply_write(xgo_regs_t *r, uint8_t addr, const uint8_t *data, size_t
         if (turn_to_at(addr, i)) {
             r->turn_to[0] = data[i];
             r->turn_to[1] = data[i + 1u];
-            r->mem[a] = 0; /* turning, until the board says it is there */
+            r->mem[slot(a)] = 0; /* turning, until the board says it is there */
             mark_written(r, (uint8_t)a);
             i += XGO_TURN_TO_LEN - 1u;
             continue;
@@ -401,9 +432,9 @@ static void apply_write(xgo_regs_t *r, uint8_t addr, const uint8_t *data, size_t
         }
         if (d->width > 1 && a == d->addr) {
             /* A shorter write sets the whole value: the rest is cleared. */
-            memset(&r->mem[a], 0, d->width);
+            memset(&r->mem[slot(a)], 0, d->width);
         }
-        r->mem[a] = data[i];
+        r->mem[slot(a)] = data[i];
         mark_written(r, (uint8_t)a);
 #if XGO_WITH_MINI2
         if (a == XGO_REG_SERVO_SPEED) {
@@ -501,19 +532,39 @@ static void apply_read_views(const xgo_regs_t *r, uint8_t addr, size_t n, uint8_
     }
 }
 
+/* The flat image's n bytes at addr: what is stored below the gap and from
+ * its end to XGO_REGS_STORED; 0 in the gap and above (the board forms the
+ * diagnostic block). */
+static void image_read(const xgo_regs_t *r, unsigned addr, size_t n, uint8_t *out)
+{
+    const unsigned end = addr + (unsigned)n;
+    unsigned from = addr;
+    if (from < XGO_REGS_GAP_START) {
+        const unsigned stop = end < XGO_REGS_GAP_START ? end : XGO_REGS_GAP_START;
+        memcpy(out, &r->mem[from], stop - from);
+        from = stop;
+    }
+    if (from < end && from < XGO_REGS_GAP_END) { /* in the gap: nothing stored */
+        const unsigned stop = end < XGO_REGS_GAP_END ? end : XGO_REGS_GAP_END;
+        memset(&out[from - addr], 0, stop - from);
+        from = stop;
+    }
+    if (from < end && from < XGO_REGS_STORED) {
+        const unsigned stop = end < XGO_REGS_STORED ? end : XGO_REGS_STORED;
+        memcpy(&out[from - addr], &r->mem[slot(from)], stop - from);
+        from = stop;
+    }
+    if (from < end) { /* above the image */
+        memset(&out[from - addr], 0, end - from);
+    }
+}
+
 xgo_drop_reason_t xgo_regs_read(const xgo_regs_t *r, uint8_t addr, size_t n, uint8_t *out)
 {
     if (n == 0 || n > XGO_FRAME_MAX_DATA || (size_t)addr + n > XGO_REG_COUNT) {
         return XGO_DROP_BAD_RANGE;
     }
-    if (addr < XGO_REGS_STORED) {
-        const size_t stored = XGO_REGS_STORED - (size_t)addr;
-        memcpy(out, &r->mem[addr], n < stored ? n : stored);
-    }
-    if ((size_t)addr + n > XGO_REGS_STORED) { /* not stored: reads 0 (the board forms the diagnostic block) */
-        const size_t from = addr < XGO_REGS_STORED ? XGO_REGS_STORED - (size_t)addr : 0u;
-        memset(&out[from], 0, n - from);
-    }
+    image_read(r, addr, n, out);
     apply_read_views(r, addr, n, out);
     return XGO_DROP_NONE;
 }
