@@ -214,12 +214,12 @@ static void test_frame_length_limit(void)
     TEST_ASSERT_EQUAL_HEX8(0x90, read1(XGO_REG_VX));
 }
 
-/* Without the Mini2 the register image stores nothing at 0x6C..0x7F
- * (xgo/board_state.h): a Mini has no register there either way. A write
- * across the gap lands on both sides of it (its gap bytes ignored and
- * counted), a read across it gives 0 in the gap and the registers after it
- * as written - on the wire as through xgo_board_read. The full core keeps
- * the image flat and answers the same. */
+/* Without the Mini2 the register image stores nothing at 0x22..0x2F,
+ * 0x6C..0x7F and 0x83..0x8F (xgo/board_state.h): a Mini has no register
+ * there either way. A write across a gap lands on both sides of it (its gap
+ * bytes ignored and counted), a read across it gives 0 in the gap and the
+ * registers after it as written - on the wire as through xgo_board_read.
+ * The full core keeps the image flat and answers the same. */
 static void test_register_image_gap(void)
 {
     uint8_t data[0x84 - 0x69], got[sizeof data], reply[80];
@@ -243,6 +243,26 @@ static void test_register_image_gap(void)
     write1(XGO_REG_DIGITAL_IN, 0xA5); /* the image's last byte */
     TEST_ASSERT_EQUAL_HEX8(0xA5, read1(XGO_REG_DIGITAL_IN));
     TEST_ASSERT_EQUAL_HEX8(0x00, read1(0x7F));
+
+    /* The other two gaps: 0x82 | 0x83..0x8F | 0x90, and 0x21 | 0x22..0x2F | 0x30. */
+    memset(data, 0x3C, sizeof data);
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_board_write(&board, XGO_SOURCE_CLI, 0x82, data, 15));
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_board_read(&board, 0x80, 20, got));
+    for (i = 0; i < 20; i++) {
+        const unsigned addr = 0x80u + i;
+        const uint8_t want = addr < 0x82u ? 0x5A : addr == 0x82u || addr == 0x90u ? 0x3C
+                             : addr == XGO_REG_DIGITAL_IN                      ? 0xA5
+                                                                               : 0x00;
+        TEST_ASSERT_EQUAL_HEX8(want, got[i]);
+    }
+    TEST_ASSERT_EQUAL_UINT(8 + 22, wire_read(0x1C, 22, reply, sizeof reply));
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_board_read(&board, 0x1C, 22, got));
+    TEST_ASSERT_EQUAL_HEX8_ARRAY(got, &reply[5], 22);
+    for (i = 0x22u - 0x1Cu; i < 0x30u - 0x1Cu; i++) {
+        TEST_ASSERT_EQUAL_HEX8(0x00, got[i]);
+    }
+    TEST_ASSERT_EQUAL_HEX8(0x80, got[XGO_REG_VX - 0x1Cu]); /* initial */
+    TEST_ASSERT_EQUAL_HEX8(0x80, got[XGO_REG_VY - 0x1Cu]);
 }
 
 /* The traced replies and dropped replies (their data copied at the event). */

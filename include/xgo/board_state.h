@@ -42,20 +42,32 @@ typedef struct xgo_regs_stats_s {
  * the rest is unmapped and reads 0 (108 bytes of RAM). */
 #define XGO_REGS_STORED 0x94u
 
-/* Without the Mini2 no model has a register at 0x6C..0x7F (the arm's are
- * there): the image skips them, addresses above sit 0x14 lower in mem and
- * in written (regs.c; 23 bytes of RAM). With it, the image is flat. */
+/* Without the Mini2 the image skips three gaps where no model it serves has
+ * a register: 0x22..0x2F, 0x6C..0x7F (the arm's are there) and 0x83..0x8F;
+ * the addresses after a gap sit lower in mem and in written by its length
+ * (regs.c; 51 bytes of RAM). With the Mini2 the gaps are empty: the image
+ * is flat. */
 #if XGO_WITH_MINI2
-#define XGO_REGS_GAP_START XGO_REGS_STORED
-#define XGO_REGS_GAP_END XGO_REGS_STORED
+#define XGO_REGS_GAP1_START XGO_REGS_STORED
+#define XGO_REGS_GAP1_END XGO_REGS_STORED
+#define XGO_REGS_GAP2_START XGO_REGS_STORED
+#define XGO_REGS_GAP2_END XGO_REGS_STORED
+#define XGO_REGS_GAP3_START XGO_REGS_STORED
+#define XGO_REGS_GAP3_END XGO_REGS_STORED
 #else
-#define XGO_REGS_GAP_START 0x6Cu
-#define XGO_REGS_GAP_END 0x80u
+#define XGO_REGS_GAP1_START 0x22u
+#define XGO_REGS_GAP1_END 0x30u
+#define XGO_REGS_GAP2_START 0x6Cu
+#define XGO_REGS_GAP2_END 0x80u
+#define XGO_REGS_GAP3_START 0x83u
+#define XGO_REGS_GAP3_END 0x90u
 #endif
-#define XGO_REGS_IMAGE_LEN (XGO_REGS_STORED - (XGO_REGS_GAP_END - XGO_REGS_GAP_START))
+#define XGO_REGS_IMAGE_LEN                                                             \
+    (XGO_REGS_STORED - (XGO_REGS_GAP1_END - XGO_REGS_GAP1_START) -                     \
+     (XGO_REGS_GAP2_END - XGO_REGS_GAP2_START) - (XGO_REGS_GAP3_END - XGO_REGS_GAP3_START))
 
 typedef struct xgo_regs_s {
-    uint8_t mem[XGO_REGS_IMAGE_LEN]; /* the image (0x00..0x93 but the gap above);
+    uint8_t mem[XGO_REGS_IMAGE_LEN]; /* the image (0x00..0x93 but the gaps above);
                                         unmapped addresses stay 0 */
     uint8_t written[(XGO_REGS_IMAGE_LEN + 7u) / 8u]; /* bit per stored address (as mem):
                                                         written since last taken */

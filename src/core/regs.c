@@ -9,6 +9,7 @@
 
 #include "check.h"
 #include "codec.h"
+#include "compiler.h"
 #include "regfile.h"
 #include "xgo/profile.h"
 
@@ -85,29 +86,74 @@ XGO_REG_LIST(REG_STORED_)
 #undef REG_STORED_
 typedef char xgo_regs_diag_above_stored_[XGO_REG_DIAG >= XGO_REGS_STORED ? 1 : -1];
 
-/* Only the arm's rows lie in the image's gap (XGO_REGS_GAP_START..END,
- * xgo/board_state.h: there is one only without the Mini2, whose rows are
+/* Only the arm's rows lie in the image's gaps (XGO_REGS_GAPn_START..END,
+ * xgo/board_state.h: there are some only without the Mini2, whose rows are
  * then never this model's). */
-#define REG_OUT_OF_GAP_(id, a, w, acc, fl, init, v, l, h, nm)                                  \
-    typedef char xgo_reg_out_of_gap_##id##_[(((XGO_REGF_##fl + 0u) & XGO_REGF_ARM) != 0u ||    \
-                                             (unsigned)(a) + (unsigned)(w) <=                  \
-                                                 XGO_REGS_GAP_START ||                         \
-                                             (unsigned)(a) >= XGO_REGS_GAP_END)                \
-                                                ? 1                                            \
-                                                : -1];
-XGO_REG_LIST(REG_OUT_OF_GAP_)
-#undef REG_OUT_OF_GAP_
+#define REG_CLEAR_OF_(a, w, n)                                                                 \
+    ((unsigned)(a) + (unsigned)(w) <= XGO_REGS_GAP##n##_START || (unsigned)(a) >= XGO_REGS_GAP##n##_END)
+#define REG_OUT_OF_GAPS_(id, a, w, acc, fl, init, v, l, h, nm)                                 \
+    typedef char xgo_reg_out_of_gaps_##id##_[(((XGO_REGF_##fl + 0u) & XGO_REGF_ARM) != 0u ||   \
+                                              (REG_CLEAR_OF_(a, w, 1) && REG_CLEAR_OF_(a, w, 2) && \
+                                               REG_CLEAR_OF_(a, w, 3)))                        \
+                                                 ? 1                                           \
+                                                 : -1];
+XGO_REG_LIST(REG_OUT_OF_GAPS_)
+#undef REG_OUT_OF_GAPS_
+#undef REG_CLEAR_OF_
+typedef char xgo_regs_gaps_in_order_[XGO_REGS_GAP1_END <= XGO_REGS_GAP2_START &&
+                                             XGO_REGS_GAP2_END <= XGO_REGS_GAP3_START &&
+                                             XGO_REGS_GAP3_END <= XGO_REGS_STORED
+                                         ? 1
+                                         : -1];
 
-/* Where a stored address (below XGO_REGS_STORED, not in the gap) sits in
- * mem and in written: the addresses above the gap sit lower by its length
- * (with the Mini2 there is none: the address itself). */
-static unsigned slot(unsigned addr)
+/* The image is reached at these fixed addresses directly: all below the
+ * first gap, where the slot is the address. */
+typedef char xgo_regs_direct_below_gaps_[XGO_REG_BT_NAME + XGO_BT_NAME_LEN <= XGO_REGS_GAP1_START &&
+                                                 XGO_REG_FIRMWARE + XGO_FIRMWARE_LEN <=
+                                                     XGO_REGS_GAP1_START &&
+                                                 XGO_REG_VERSION < XGO_REGS_GAP1_START
+                                             ? 1
+                                             : -1];
+
+/* The stored runs of addresses, between the gaps (reads copy them). */
+static const uint8_t k_stored[4][2] = {
+    {0x00u, XGO_REGS_GAP1_START},
+    {XGO_REGS_GAP1_END, XGO_REGS_GAP2_START},
+    {XGO_REGS_GAP2_END, XGO_REGS_GAP3_START},
+    {XGO_REGS_GAP3_END, XGO_REGS_STORED},
+};
+
+#if !XGO_WITH_MINI2
+/* How much lower than its address a stored address sits, by its block of
+ * 16 addresses: every gap ends on a block boundary, so all stored addresses
+ * of a block have the same gaps below them. A table lookup, not three
+ * compares: the tick reaches the image through this about a dozen times. */
+typedef char xgo_regs_gaps_end_on_blocks_[XGO_REGS_GAP1_END % 16u == 0u &&
+                                                  XGO_REGS_GAP2_END % 16u == 0u &&
+                                                  XGO_REGS_GAP3_END % 16u == 0u
+                                              ? 1
+                                              : -1];
+#define GAPS_BELOW_(block)                                                                     \
+    (((XGO_REGS_GAP1_END <= 16u * (block)) ? XGO_REGS_GAP1_END - XGO_REGS_GAP1_START : 0u) +   \
+     ((XGO_REGS_GAP2_END <= 16u * (block)) ? XGO_REGS_GAP2_END - XGO_REGS_GAP2_START : 0u) +   \
+     ((XGO_REGS_GAP3_END <= 16u * (block)) ? XGO_REGS_GAP3_END - XGO_REGS_GAP3_START : 0u))
+static const uint8_t k_gaps_below[(XGO_REGS_STORED + 15u) / 16u] = {
+    GAPS_BELOW_(0u), GAPS_BELOW_(1u), GAPS_BELOW_(2u), GAPS_BELOW_(3u), GAPS_BELOW_(4u),
+    GAPS_BELOW_(5u), GAPS_BELOW_(6u), GAPS_BELOW_(7u), GAPS_BELOW_(8u), GAPS_BELOW_(9u),
+};
+#undef GAPS_BELOW_
+#endif
+
+/* Where a stored address (below XGO_REGS_STORED, in no gap) sits in mem
+ * and in written: lower by the length of the gaps below it (with the Mini2
+ * there are none: the address itself). No check of its own: it runs about
+ * a dozen times a tick. */
+XGO_ALWAYS_INLINE unsigned slot(unsigned addr)
 {
-#if XGO_REGS_GAP_START == XGO_REGS_GAP_END
+#if XGO_WITH_MINI2
     return addr;
 #else
-    XGO_ASSERT(addr < XGO_REGS_GAP_START || (addr >= XGO_REGS_GAP_END && addr < XGO_REGS_STORED));
-    return addr < XGO_REGS_GAP_START ? addr : addr - (XGO_REGS_GAP_END - XGO_REGS_GAP_START);
+    return addr - k_gaps_below[addr >> 4]; /* callers: row addresses (none in a gap, above) */
 #endif
 }
 
@@ -532,30 +578,20 @@ static void apply_read_views(const xgo_regs_t *r, uint8_t addr, size_t n, uint8_
     }
 }
 
-/* The flat image's n bytes at addr: what is stored below the gap and from
- * its end to XGO_REGS_STORED; 0 in the gap and above (the board forms the
- * diagnostic block). */
+/* The flat image's n bytes at addr: what is stored in the runs between the
+ * gaps, 0 in the gaps and above XGO_REGS_STORED (nothing was ever stored
+ * there; the board forms the diagnostic block). */
 static void image_read(const xgo_regs_t *r, unsigned addr, size_t n, uint8_t *out)
 {
     const unsigned end = addr + (unsigned)n;
-    unsigned from = addr;
-    if (from < XGO_REGS_GAP_START) {
-        const unsigned stop = end < XGO_REGS_GAP_START ? end : XGO_REGS_GAP_START;
-        memcpy(out, &r->mem[from], stop - from);
-        from = stop;
-    }
-    if (from < end && from < XGO_REGS_GAP_END) { /* in the gap: nothing stored */
-        const unsigned stop = end < XGO_REGS_GAP_END ? end : XGO_REGS_GAP_END;
-        memset(&out[from - addr], 0, stop - from);
-        from = stop;
-    }
-    if (from < end && from < XGO_REGS_STORED) {
-        const unsigned stop = end < XGO_REGS_STORED ? end : XGO_REGS_STORED;
-        memcpy(&out[from - addr], &r->mem[slot(from)], stop - from);
-        from = stop;
-    }
-    if (from < end) { /* above the image */
-        memset(&out[from - addr], 0, end - from);
+    unsigned i;
+    memset(out, 0, n);
+    for (i = 0; i < sizeof k_stored / sizeof k_stored[0]; i++) {
+        const unsigned lo = addr > k_stored[i][0] ? addr : k_stored[i][0];
+        const unsigned hi = end < k_stored[i][1] ? end : k_stored[i][1];
+        if (lo < hi) {
+            memcpy(&out[lo - addr], &r->mem[slot(lo)], hi - lo);
+        }
     }
 }
 
@@ -589,15 +625,15 @@ void xgo_regs_set_attitude(xgo_regs_t *r, int32_t roll_mdeg, int32_t pitch_mdeg,
     r->attitude_mdeg[0] = roll_mdeg;
     r->attitude_mdeg[1] = pitch_mdeg;
     r->attitude_mdeg[2] = yaw_mdeg;
-    r->mem[XGO_REG_IMU_ROLL] = xgo_angle_to_byte(roll_mdeg);
-    r->mem[XGO_REG_IMU_PITCH] = xgo_angle_to_byte(pitch_mdeg);
-    r->mem[XGO_REG_IMU_YAW] = xgo_angle_to_byte(yaw_mdeg);
+    r->mem[slot(XGO_REG_IMU_ROLL)] = xgo_angle_to_byte(roll_mdeg);
+    r->mem[slot(XGO_REG_IMU_PITCH)] = xgo_angle_to_byte(pitch_mdeg);
+    r->mem[slot(XGO_REG_IMU_YAW)] = xgo_angle_to_byte(yaw_mdeg);
 }
 
 void xgo_regs_set_joints(xgo_regs_t *r, const xgo_profile_t *p,
                          const int32_t q_mdeg[XGO_LEG_COUNT][XGO_JOINT_COUNT])
 {
-    xgo_joints_update_bytes(p, q_mdeg, &r->mem[XGO_REG_SERVO11]);
+    xgo_joints_update_bytes(p, q_mdeg, &r->mem[slot(XGO_REG_SERVO11)]);
 }
 
 /* Every counter has its slot in 0xC4..0xFF; a 16th needs a new block. */
