@@ -184,34 +184,36 @@ static void test_action_runs(void)
     TEST_ASSERT_EQUAL_UINT8(0, xgo_board_action(&board));
 }
 
-/* A frame longer than XGO_PARSER_FRAME_MAX (firmware: 32) is dropped as a
+/* A frame longer than XGO_PARSER_FRAME_MAX (firmware: 24) is dropped as a
  * bad length, and the read request right behind it is still answered: its
- * bytes are rescanned. 32 bytes (24 data: 0x30..0x47, the whole-unit and
- * foot registers, valid values) still pass and are applied. */
+ * bytes are rescanned. 24 bytes (16 data: 0x31..0x40, the whole-unit
+ * registers with the two-byte heading, valid values) still pass and are
+ * applied. The vendor library's longest write is 12 bytes (the joints),
+ * test_fw_serial's 12. */
 static void test_frame_length_limit(void)
 {
     static uint8_t bytes[2 * 40 + 9];
     uint32_t before[XGO_DIAG_COUNT], after[XGO_DIAG_COUNT];
-    uint8_t reply[64], data[25];
+    uint8_t reply[64], data[17];
     size_t n = 0;
     memset(data, 0x80, sizeof data);
-    data[0] = 0x90; /* vx, to see that the 24-byte write is applied */
-    data[XGO_REG_MOVE_MODE - 0x30] = 0; /* a valid pace */
-    data[XGO_REG_ACTION - 0x30] = 0;    /* no action */
-    data[XGO_REG_TURN_TO - 0x30] = 0;   /* a heading (two bytes with 0x40) */
+    data[0] = 0x90; /* vy, to see that the 16-byte write is applied */
+    data[XGO_REG_MOVE_MODE - 0x31] = 0; /* a valid pace */
+    data[XGO_REG_ACTION - 0x31] = 0;    /* no action */
+    data[XGO_REG_TURN_TO - 0x31] = 0;   /* a heading (two bytes with 0x40) */
     init_model(XGO_MODEL_MINI);
     xgo_board_counters(&board, before);
-    n += xgo_frame_encode(XGO_TYPE_WRITE, 0x30, data, 24, &bytes[n], sizeof bytes - n);
-    n += xgo_frame_encode(XGO_TYPE_WRITE, 0x30, data, 25, &bytes[n], sizeof bytes - n);
-    TEST_ASSERT_EQUAL_UINT(32 + 33, n);
+    n += xgo_frame_encode(XGO_TYPE_WRITE, 0x31, data, 16, &bytes[n], sizeof bytes - n);
+    n += xgo_frame_encode(XGO_TYPE_WRITE, 0x31, data, 17, &bytes[n], sizeof bytes - n);
+    TEST_ASSERT_EQUAL_UINT(24 + 25, n);
     xgo_board_receive(&board, bytes, n, 0);
     TEST_ASSERT_EQUAL_UINT(20, wire_read(XGO_REG_SERVO11, 12, reply, sizeof reply));
     xgo_board_counters(&board, after);
-    TEST_ASSERT_EQUAL_UINT32(XGO_PARSER_FRAME_MAX < 33u ? 1u : 0u,
+    TEST_ASSERT_EQUAL_UINT32(XGO_PARSER_FRAME_MAX < 25u ? 1u : 0u,
                              after[XGO_DIAG_BAD_LENGTH] - before[XGO_DIAG_BAD_LENGTH]);
-    TEST_ASSERT_EQUAL_UINT32(XGO_PARSER_FRAME_MAX < 33u ? 2u : 3u,
+    TEST_ASSERT_EQUAL_UINT32(XGO_PARSER_FRAME_MAX < 25u ? 2u : 3u,
                              after[XGO_DIAG_FRAMES_OK] - before[XGO_DIAG_FRAMES_OK]);
-    TEST_ASSERT_EQUAL_HEX8(0x90, read1(XGO_REG_VX));
+    TEST_ASSERT_EQUAL_HEX8(0x90, read1(XGO_REG_VY));
 }
 
 /* Without the Mini2 the register image stores nothing at 0x22..0x2F,
@@ -290,52 +292,70 @@ static void trace_replies(void *ctx, const xgo_trace_event_t *ev)
     memcpy(traced.data, ev->frame->data, ev->frame->len);
 }
 
+/* The longest read the firmware's transmit buffer answers (113 bytes: reads
+ * of up to 105), or 120 with the host's buffer (the test's own bound). */
+#define LONGEST_READ (XGO_TX_BUFFER_SIZE - 8u < 120u ? XGO_TX_BUFFER_SIZE - 8u : 120u)
+
 /* A read whose reply does not fit the transmit buffer even when it is empty
- * (firmware: 128 bytes, so reads of up to 120) is dropped whole and counted
+ * (firmware: 113 bytes, so reads of up to 105) is dropped whole and counted
  * in tx_overflow: not a byte of it is queued, and the trace still shows the
  * data it would have carried. The next read is answered, byte for byte what
  * the registers hold (the reply is built in place in the transmit buffer).
- * The full core answers both. */
+ * The full core answers both. The vendor library's longest read is 24
+ * bytes, test_fw_serial's 48, the diagnostic block (xgo-cli diag) 60. */
 static void test_reply_longer_than_transmit_buffer(void)
 {
     static uint8_t reply[256];
-    uint8_t regs[121];
+    uint8_t regs[LONGEST_READ + 1u];
     uint32_t before[XGO_DIAG_COUNT], after[XGO_DIAG_COUNT];
-    const int fits = XGO_TX_BUFFER_SIZE >= 121u + 8u;
-    unsigned sum = 0x80u + 0x12u + 0x30u, i;
+    const int fits = XGO_TX_BUFFER_SIZE >= LONGEST_READ + 1u + 8u;
+    unsigned sum = (LONGEST_READ + 8u) + 0x12u + 0x30u, i;
     init_model(XGO_MODEL_MINI);
     memset(&traced, 0, sizeof traced);
     xgo_board_set_trace(&board, trace_replies, NULL);
     xgo_board_counters(&board, before);
-    TEST_ASSERT_EQUAL_UINT(fits ? 129u : 0u, wire_read(0x00, 121, reply, sizeof reply));
+    TEST_ASSERT_EQUAL_UINT(fits ? LONGEST_READ + 9u : 0u,
+                           wire_read(0x00, LONGEST_READ + 1u, reply, sizeof reply));
     TEST_ASSERT_EQUAL_UINT(0, xgo_board_tx_pending(&board)); /* nothing half-queued */
     TEST_ASSERT_EQUAL_UINT(fits ? 0u : 1u, traced.overflows);
-    TEST_ASSERT_EQUAL_UINT(121, traced.len);
-    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_board_read(&board, 0x00, 121, regs));
-    TEST_ASSERT_EQUAL_HEX8_ARRAY(regs, traced.data, 121);
+    TEST_ASSERT_EQUAL_UINT(LONGEST_READ + 1u, traced.len);
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_board_read(&board, 0x00, LONGEST_READ + 1u, regs));
+    TEST_ASSERT_EQUAL_HEX8_ARRAY(regs, traced.data, LONGEST_READ + 1u);
 
-    /* The longest answered read: 0x30..0xA7, the whole-unit registers, the
-     * joints, the IMU bytes and the unmapped ones after them. */
-    TEST_ASSERT_EQUAL_UINT(128, wire_read(0x30, 120, reply, sizeof reply));
-    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_board_read(&board, 0x30, 120, regs));
+    /* The longest answered read: from 0x30 on, the whole-unit registers,
+     * the joints, the IMU bytes and what follows. */
+    TEST_ASSERT_EQUAL_UINT(LONGEST_READ + 8u, wire_read(0x30, LONGEST_READ, reply, sizeof reply));
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_board_read(&board, 0x30, LONGEST_READ, regs));
     TEST_ASSERT_EQUAL_HEX8(0x55, reply[0]);
     TEST_ASSERT_EQUAL_HEX8(0x00, reply[1]);
-    TEST_ASSERT_EQUAL_HEX8(128, reply[2]);
+    TEST_ASSERT_EQUAL_HEX8(LONGEST_READ + 8u, reply[2]);
     TEST_ASSERT_EQUAL_HEX8(0x12, reply[3]);
     TEST_ASSERT_EQUAL_HEX8(0x30, reply[4]);
-    TEST_ASSERT_EQUAL_HEX8_ARRAY(regs, &reply[5], 120);
-    for (i = 0; i < 120; i++) {
+    TEST_ASSERT_EQUAL_HEX8_ARRAY(regs, &reply[5], LONGEST_READ);
+    for (i = 0; i < LONGEST_READ; i++) {
         sum += regs[i];
     }
-    TEST_ASSERT_EQUAL_HEX8((uint8_t)~sum, reply[125]);
-    TEST_ASSERT_EQUAL_HEX8(0x00, reply[126]);
-    TEST_ASSERT_EQUAL_HEX8(0xAA, reply[127]);
+    TEST_ASSERT_EQUAL_HEX8((uint8_t)~sum, reply[LONGEST_READ + 5u]);
+    TEST_ASSERT_EQUAL_HEX8(0x00, reply[LONGEST_READ + 6u]);
+    TEST_ASSERT_EQUAL_HEX8(0xAA, reply[LONGEST_READ + 7u]);
     TEST_ASSERT_EQUAL_UINT(fits ? 2u : 1u, traced.tx);
-    TEST_ASSERT_EQUAL_HEX8_ARRAY(regs, traced.data, 120);
+    TEST_ASSERT_EQUAL_HEX8_ARRAY(regs, traced.data, LONGEST_READ);
     xgo_board_counters(&board, after);
     TEST_ASSERT_EQUAL_UINT32(fits ? 0u : 1u,
                              after[XGO_DIAG_TX_OVERFLOW] - before[XGO_DIAG_TX_OVERFLOW]);
     xgo_board_set_trace(&board, NULL, NULL);
+}
+
+/* The diagnostic block (60 bytes) in one read, as xgo-cli diag asks for it:
+ * the firmware's transmit buffer answers it. */
+static void test_diag_block_in_one_read(void)
+{
+    static uint8_t reply[256];
+    uint8_t block[60];
+    init_model(XGO_MODEL_MINI);
+    TEST_ASSERT_EQUAL_UINT(68, wire_read(XGO_REG_DIAG, 60, reply, sizeof reply));
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_board_read(&board, XGO_REG_DIAG, 60, block));
+    TEST_ASSERT_EQUAL_HEX8_ARRAY(block, &reply[5], 60);
 }
 
 /* Emulator inputs (ground tilt, a shove) only where they are built in:
@@ -433,7 +453,7 @@ void xgo_port_servo_write(xgo_port_t *p, const int32_t raw_mdeg[XGO_SERVO_COUNT]
 }
 
 /* Twelve back-to-back reads of the twelve joints (240 reply bytes, more than
- * the firmware's 128-byte transmit buffer holds) through the device: every
+ * the firmware's 113-byte transmit buffer holds) through the device: every
  * reply arrives whole and in order, none is dropped. The device feeds input
  * only while the longest reply the board can queue still fits. */
 static void test_device_back_to_back_reads(void)
@@ -481,6 +501,7 @@ int main(void)
     RUN_TEST(test_frame_length_limit);
     RUN_TEST(test_register_image_gap);
     RUN_TEST(test_reply_longer_than_transmit_buffer);
+    RUN_TEST(test_diag_block_in_one_read);
     RUN_TEST(test_emulator_inputs);
     RUN_TEST(test_names);
     RUN_TEST(test_device_back_to_back_reads);

@@ -24,8 +24,10 @@
  * them. A reply is at most 255 bytes (a read of 247). A smaller ring answers
  * the reads whose reply fits it; a longer one is dropped whole and counted
  * (tx_overflow), as a reply that finds the ring full is. The firmware images
- * take 128: reads of up to 120 bytes (the vendor library's longest is 24,
- * the diagnostic block 60; docs/mcu.md "Build options"). */
+ * take 113: reads of up to 105 bytes (the vendor library's longest is 24,
+ * the diagnostic block 60; docs/mcu.md "Build options"). 113, not less:
+ * tools/mcu/run.sh reads the image 0x00..0xC3 in reads as long as the
+ * buffer answers, and with 105 its second read still starts on no view. */
 #ifndef XGO_TX_BUFFER_SIZE
 #define XGO_TX_BUFFER_SIZE 1024u
 #endif
@@ -35,9 +37,9 @@
  * checksum and tail are checked, so this sizes its buffer. A longer frame
  * is dropped as a bad length (counted in bad_length) and its bytes are
  * rescanned like any rejected candidate's. 255: every frame the protocol
- * allows; the firmware images take 32, writes of up to 24 bytes (docs/mcu.md
+ * allows; the firmware images take 24, writes of up to 16 bytes (docs/mcu.md
  * "Build options": the vendor library's writes are a few bytes each, a
- * Bluetooth name up to 10, the twelve joints 12; 223 bytes of RAM less). */
+ * Bluetooth name up to 10, the twelve joints 12; 231 bytes of RAM less). */
 #ifndef XGO_PARSER_FRAME_MAX
 #define XGO_PARSER_FRAME_MAX 255u
 #endif
