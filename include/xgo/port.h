@@ -141,13 +141,21 @@ typedef struct xgo_device_s {
     uint8_t nv_quiet_ticks;           /* ticks since the NV data last moved
                                          (<= XGO_PORT_NV_SETTLE_TICKS) */
     volatile uint32_t tick_signals;   /* control periods elapsed: producer only;
-                                         handled (run or skipped): stats.ticks +
-                                         stats.ticks_skipped */
+                                         handled (run or skipped): the board's
+                                         ticks + counts.ticks_skipped */
     uint32_t nv_changes_saved;        /* xgo_board_nv_changes() at the last save */
     uint32_t nv_changes_seen;         /* ... when last looked at */
     uint32_t wire_ms;                 /* the parser's clock (see device.c) */
     uint32_t wire_seen_ms;            /* xgo_port_millis() when last read */
-    xgo_device_stats_t stats;
+    struct {                          /* xgo_device_stats_t but its ticks: the ticks
+                                         run are the board's own count */
+        uint32_t rx_bytes;
+        uint32_t rx_pauses;
+        uint32_t tx_bytes;
+        uint32_t ticks_skipped;
+        uint32_t nv_saves;
+        uint32_t nv_save_failures;
+    } counts;
     uint8_t rx_ring[XGO_PORT_RX_RING_SIZE];
     xgo_board_t board;
 } xgo_device_t;
@@ -188,7 +196,8 @@ void xgo_device_run(xgo_device_t *d);
  * port may sleep (check it with interrupts masked, then WFI). */
 int xgo_device_idle(xgo_device_t *d);
 
-/* The board, for the public observers of xgo/board.h (and a trace hook). */
+/* The board, for the public observers of xgo/board.h (and a trace hook);
+ * only the device ticks it (its tick count is the device's ticks run). */
 xgo_board_t *xgo_device_board(xgo_device_t *d);
 
 /* What the device did: a copy of its counters. */

@@ -7,7 +7,8 @@
  * size being a power of two no larger than 32768). A 16-bit aligned store is
  * atomic on every target we build for, so no lock is needed. Control periods
  * work the same way: the timer interrupt counts tick_signals up, the main
- * loop counts behind it the ticks it ran and those it skipped (its stats).
+ * loop counts behind it: the ticks it ran (the board's own count) and those
+ * it skipped.
  */
 #include "xgo/port.h"
 
@@ -52,7 +53,7 @@ int xgo_device_rx_put(xgo_device_t *d, uint8_t byte)
         return 1;
     }
     d->rx_paused = 1;
-    d->stats.rx_pauses++;
+    d->counts.rx_pauses++;
     return 0;
 }
 
@@ -68,7 +69,13 @@ xgo_board_t *xgo_device_board(xgo_device_t *d)
 
 void xgo_device_stats(const xgo_device_t *d, xgo_device_stats_t *out)
 {
-    *out = d->stats;
+    out->rx_bytes = d->counts.rx_bytes;
+    out->rx_pauses = d->counts.rx_pauses;
+    out->tx_bytes = d->counts.tx_bytes;
+    out->ticks = d->board.ticks; /* only the device ticks its board */
+    out->ticks_skipped = d->counts.ticks_skipped;
+    out->nv_saves = d->counts.nv_saves;
+    out->nv_save_failures = d->counts.nv_save_failures;
 }
 
 /* The longest reply the board queues: a whole frame, or the whole transmit
@@ -96,7 +103,7 @@ XGO_OWN_FRAME static void send_replies(xgo_device_t *d)
         }
         n = xgo_board_transmit(&d->board, chunk, room < sizeof chunk ? room : sizeof chunk);
         xgo_port_tx_write(d->port, chunk, n);
-        d->stats.tx_bytes += (uint32_t)n;
+        d->counts.tx_bytes += (uint32_t)n;
     }
 }
 
@@ -122,7 +129,7 @@ XGO_OWN_FRAME static void feed_input(xgo_device_t *d, uint32_t now_ms)
         chunk = chunk < to_end ? chunk : to_end;
         xgo_board_receive(&d->board, &d->rx_ring[tail & RING_MASK], chunk, now_ms);
         d->rx_tail = (uint16_t)(tail + chunk);
-        d->stats.rx_bytes += (uint32_t)chunk;
+        d->counts.rx_bytes += (uint32_t)chunk;
         if (d->rx_paused) {
             /* Cleared before resuming: the producer sets it again only
              * after the port has unmasked it, so no pause is missed. */
@@ -160,9 +167,9 @@ XGO_OWN_FRAME static void track_nv(xgo_device_t *d)
     xgo_board_get_nv(&d->board, &nv);
     if (xgo_port_nv_save(d->port, &nv)) {
         d->nv_changes_saved = changes;
-        d->stats.nv_saves++;
+        d->counts.nv_saves++;
     } else {
-        d->stats.nv_save_failures++;
+        d->counts.nv_save_failures++;
     }
 }
 
@@ -170,7 +177,7 @@ XGO_OWN_FRAME static void track_nv(xgo_device_t *d)
  * device keeps no count of its own for them. */
 static uint32_t ticks_owed(const xgo_device_t *d)
 {
-    return d->tick_signals - (d->stats.ticks + d->stats.ticks_skipped);
+    return d->tick_signals - (d->board.ticks + d->counts.ticks_skipped);
 }
 
 /* The ticks due when called, at most XGO_PORT_MAX_CATCHUP_TICKS of them (a
@@ -181,14 +188,13 @@ static void run_due_ticks(xgo_device_t *d)
 {
     uint32_t due = ticks_owed(d);
     if (due > XGO_PORT_MAX_CATCHUP_TICKS) {
-        d->stats.ticks_skipped += due - XGO_PORT_MAX_CATCHUP_TICKS;
+        d->counts.ticks_skipped += due - XGO_PORT_MAX_CATCHUP_TICKS;
         due = XGO_PORT_MAX_CATCHUP_TICKS;
     }
     d->ticks_now = (uint8_t)due;
     while (d->ticks_now > 0) {
         d->ticks_now--;
-        xgo_board_tick(&d->board);
-        d->stats.ticks++;
+        xgo_board_tick(&d->board); /* counts it */
         write_servos(d);
         track_nv(d);
     }
