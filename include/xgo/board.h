@@ -103,10 +103,15 @@ typedef uint8_t xgo_tx_index_t;
 typedef uint16_t xgo_tx_index_t;
 #endif
 
+/* The register file first and the motion core right after it: the tick
+ * works on both, and at the board's start (short offsets on a Cortex-M0)
+ * it keeps fewer pointers in its frame, the deepest path's (nRF51
+ * xgo_board_tick 80 -> 72 bytes, tools/mcu/fw_check.sh). */
 typedef struct xgo_board_s {
+    xgo_regs_t regs;
+    xgo_motion_t motion;
     xgo_board_config_t config;
     xgo_parser_t parser;
-    xgo_regs_t regs;
     uint8_t tx[XGO_TX_BUFFER_SIZE]; /* queue of reply bytes (board.c) */
     xgo_tx_index_t tx_head;         /* index of the oldest byte */
     xgo_tx_index_t tx_len;
@@ -114,7 +119,6 @@ typedef struct xgo_board_s {
     uint32_t tx_overflows;
     uint32_t framing_errors;        /* bytes the UART received with a bad stop bit */
     uint32_t ticks;
-    xgo_motion_t motion;
     xgo_trace_fn trace;
     void *trace_ctx;
 } xgo_board_t;
