@@ -757,6 +757,41 @@ static void test_body_ik_identities(void)
     TEST_ASSERT_INT32_WITHIN(1, -p->hip_x_um, legs[0].x);
 }
 
+/* The body IK's foot - body differences are taken in 32 bits: one that
+ * wraps there must still take the saturating far path (a wrapped -3 is
+ * not near), and the near bound itself is inclusive. Zero angles: both
+ * paths are exact, so the values are known. */
+static void test_body_ik_differences_beyond_int32(void)
+{
+    const xgo_profile_t *p = xgo_profile_mini();
+    const int32_t ox = p->hip_x_um, oy = p->hip_y_um + p->abad_offset_um;
+    xgo_body_pose_t pose;
+    xgo_vec3_t feet[4], legs[4];
+    xgo_stance_feet(p, feet);
+    xgo_body_pose_stand(p, &pose);
+    pose.x_um = INT32_MIN + 2;
+    pose.y_um = INT32_MAX;
+    pose.z_um = 1000;
+    feet[XGO_LEG_LF].x = INT32_MAX;                /* 2^32 - 3 away, wraps to -3 */
+    feet[XGO_LEG_LF].y = INT32_MIN + 5;            /* -(2^32 - 6) away, wraps to 6 */
+    feet[XGO_LEG_RF].x = pose.x_um + ((1 << 22) - 1); /* the near bound */
+    feet[XGO_LEG_RF].y = pose.y_um - ((1 << 22) - 1);
+    feet[XGO_LEG_RF].z = pose.z_um - ((1 << 22) - 1);
+    feet[XGO_LEG_RH].x = pose.x_um + (1 << 22); /* just beyond it */
+    feet[XGO_LEG_RH].y = pose.y_um - (1 << 22);
+    feet[XGO_LEG_RH].z = pose.z_um + (1 << 22);
+    xgo_body_ik(p, &pose, feet, legs);
+    TEST_ASSERT_EQUAL_INT32(INT32_MAX - ox, legs[XGO_LEG_LF].x);
+    TEST_ASSERT_EQUAL_INT32(INT32_MIN, legs[XGO_LEG_LF].y);
+    TEST_ASSERT_EQUAL_INT32((1 << 22) - 1 - ox, legs[XGO_LEG_RF].x);
+    TEST_ASSERT_EQUAL_INT32(-((1 << 22) - 1) + oy, legs[XGO_LEG_RF].y);
+    TEST_ASSERT_EQUAL_INT32((1 << 22) - 1, legs[XGO_LEG_RF].z);
+    TEST_ASSERT_EQUAL_INT32((1 << 22) + ox, legs[XGO_LEG_RH].x);
+    TEST_ASSERT_EQUAL_INT32(-(1 << 22) + oy, legs[XGO_LEG_RH].y);
+    TEST_ASSERT_EQUAL_INT32(-(1 << 22), legs[XGO_LEG_RH].z);
+    TEST_ASSERT_EQUAL_INT32(1000, legs[XGO_LEG_LF].z);
+}
+
 /* ------------------------------------------------------------ byte codes */
 
 /* The vendor library's encoder, as Python evaluates it in double. */
@@ -873,6 +908,7 @@ int main(void)
     RUN_TEST(test_extreme_inputs_never_overflow);
     RUN_TEST(test_body_ik_against_reference_over_register_ranges);
     RUN_TEST(test_body_ik_identities);
+    RUN_TEST(test_body_ik_differences_beyond_int32);
     RUN_TEST(test_byte_codes_match_the_vendor_library);
     RUN_TEST(test_twelve_register_blocks);
     return UNITY_END();

@@ -583,11 +583,14 @@ void xgo_body_rotation(const xgo_body_pose_t *pose, xgo_q30_t rot[XGO_ROT_COUNT]
     rot[XGO_ROT(2, 2)] = mul30(cp, cr);
 }
 
-/* The thigh joint of a leg (leg frame origin) in the body frame. */
+/* The thigh joint of a leg (leg frame origin) in the body frame: the
+ * signs of xgo_leg_side_x / xgo_leg_side_y (profile.c) by the leg's index
+ * here, so the body IK's loop makes no calls. */
 static void leg_origin(const xgo_profile_t *p, int leg, int32_t *ox, int32_t *oy)
 {
-    *ox = xgo_leg_side_x((xgo_leg_t)leg) * p->hip_x_um;
-    *oy = xgo_leg_side_y((xgo_leg_t)leg) * (p->hip_y_um + p->abad_offset_um);
+    const int32_t ax = p->hip_x_um, ay = p->hip_y_um + p->abad_offset_um;
+    *ox = (leg == XGO_LEG_LF || leg == XGO_LEG_RF) ? ax : -ax;
+    *oy = (leg == XGO_LEG_LF || leg == XGO_LEG_LH) ? ay : -ay;
 }
 
 void xgo_body_ik(const xgo_profile_t *p, const xgo_body_pose_t *pose,
@@ -622,10 +625,24 @@ static int32_t dot3_q18(int32_t q0, int32_t q1, int32_t q2, int32_t v0, int32_t 
 
 #define NEAR_LIMIT_UM ((1 << 22) - 1)
 
-static int near3_64(int64_t a, int64_t b, int64_t c)
+/* Whether the exact a - b is within +-NEAR_LIMIT_UM, and if so a - b in
+ * *d. On a 32-bit core all in 32 bits: the difference modulo 2^32 is exact
+ * unless a and b differ in sign and it differs from a (an overflow, never
+ * near); no 64-bit subtractions and compares, and a value the compiler
+ * knows is 32 bits (from a 64-bit difference GCC made the Cortex-M3's
+ * products below 64 x 64 bits). The same answer either way. */
+XGO_ALWAYS_INLINE int near_diff(int32_t a, int32_t b, int32_t *d)
 {
-    return a <= NEAR_LIMIT_UM && a >= -NEAR_LIMIT_UM && b <= NEAR_LIMIT_UM && b >= -NEAR_LIMIT_UM &&
-           c <= NEAR_LIMIT_UM && c >= -NEAR_LIMIT_UM;
+#if XGO_CORE_DIV64_NATIVE /* a 64-bit host: the plain difference is cheaper */
+    const int64_t v = (int64_t)a - b;
+    const int near = v <= NEAR_LIMIT_UM && v >= -NEAR_LIMIT_UM;
+    *d = near ? (int32_t)v : 0;
+    return near;
+#else
+    const uint32_t ua = (uint32_t)a, ub = (uint32_t)b, r = ua - ub;
+    *d = r <= (uint32_t)INT32_MAX ? (int32_t)r : -(int32_t)~r - 1; /* two's complement view */
+    return ((ua ^ ub) & (ua ^ r)) < 0x80000000u && r + (uint32_t)NEAR_LIMIT_UM <= 2u * (uint32_t)NEAR_LIMIT_UM;
+#endif
 }
 
 static int near3(int32_t a, int32_t b, int32_t c)
@@ -660,18 +677,19 @@ void xgo_body_ik_rotated(const xgo_profile_t *p, const xgo_body_pose_t *pose,
     for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
         /* foot relative to the body centre, in machine axes, then into body
          * axes (R^T v) and the leg frame (origin at the thigh joint, z down) */
-        const int64_t vx = (int64_t)feet_machine_um[leg].x - pose->x_um;
-        const int64_t vy = (int64_t)feet_machine_um[leg].y - pose->y_um;
-        const int64_t vz = (int64_t)feet_machine_um[leg].z - pose->z_um;
-        int32_t ox, oy;
+        const xgo_vec3_t *f = &feet_machine_um[leg];
+        int32_t x, y, z, ox, oy;
         leg_origin(p, leg, &ox, &oy);
-        if (near3_64(vx, vy, vz)) { /* every value below 2^24: no saturation */
-            const int32_t x = (int32_t)vx, y = (int32_t)vy, z = (int32_t)vz;
+        /* (& rather than &&: all three differences are needed below anyway) */
+        if (near_diff(f->x, pose->x_um, &x) & near_diff(f->y, pose->y_um, &y) &
+            near_diff(f->z, pose->z_um, &z)) { /* every value below 2^24: no saturation */
             feet_leg_um[leg].x = dot3_q18(q[0], q[3], q[6], x, y, z) - ox;
             feet_leg_um[leg].y = dot3_q18(q[1], q[4], q[7], x, y, z) - oy;
             feet_leg_um[leg].z = -dot3_q18(q[2], q[5], q[8], x, y, z);
         } else { /* saturated to int32 so the products stay within 2^61 */
-            const int32_t x = sat_i32(vx), y = sat_i32(vy), z = sat_i32(vz);
+            x = sat_i32((int64_t)f->x - pose->x_um);
+            y = sat_i32((int64_t)f->y - pose->y_um);
+            z = sat_i32((int64_t)f->z - pose->z_um);
             feet_leg_um[leg].x = sat_i32(dot3_q30_far(rot[0], rot[3], rot[6], x, y, z) - ox);
             feet_leg_um[leg].y = sat_i32(dot3_q30_far(rot[1], rot[4], rot[7], x, y, z) - oy);
             feet_leg_um[leg].z = sat_i32(-dot3_q30_far(rot[2], rot[5], rot[8], x, y, z));
