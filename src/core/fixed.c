@@ -711,16 +711,17 @@ static uint64_t abs_u64(int64_t v)
 xgo_bam_t xgo_atan2_64(int64_t y, int64_t x)
 {
     const uint64_t ux = abs_u64(x), uy = abs_u64(y); /* <= 2^63 */
-    const unsigned bits = xgo_bit_length(ux | uy);
     const int swap = uy > ux;
+    const uint64_t big = swap ? uy : ux, small = swap ? ux : uy;
+    const uint32_t hi = (uint32_t)(big >> 32); /* the larger has the bit length of both */
     unsigned k;
-    if (bits <= 32u) {
+    if (hi == 0u) {
         return atan2_u32((uint32_t)ux, (uint32_t)uy, x < 0, y < 0);
     }
-    /* round(v / 2^k) to 25 bits (the larger may round up to 2^25) */
-    k = bits - 25u;
-    return fold(atan_octant(xgo_round_shr64(swap ? uy : ux, k), xgo_round_shr64(swap ? ux : uy, k)), swap,
-                x < 0, y < 0);
+    /* round(v / 2^k) to 25 bits (the larger may round up to 2^25): k is
+     * the bit length, 64 - clz(hi), less 25 */
+    k = 39u - xgo_clz32(hi);
+    return fold(atan_octant(xgo_round_shr64(big, k), xgo_round_shr64(small, k)), swap, x < 0, y < 0);
 }
 
 /* ------------------------------------------------------------ asin / acos */

@@ -91,15 +91,16 @@ XGO_ALWAYS_INLINE int64_t xgo_mul_wide(int32_t a, int32_t b)
 #endif
 
 /* Variable shifts of 64-bit values are libgcc calls on a Cortex-M0
- * (__aeabi_llsl/llsr/lasr, about 12 instructions plus the call); where the
- * result fits 32 bits the two halves do it inline. Elsewhere the plain
- * shift. The same value either way. */
+ * (__aeabi_llsl/llsr/lasr, about 12 instructions plus the call) and a
+ * dozen conditional instructions on a Cortex-M3; where the result fits 32
+ * bits the two halves do it inline on every 32-bit core. On a 64-bit
+ * host the plain shift. The same value either way. */
 
 /* round(v / 2^k) (ties up) for 1 <= k <= 63 when it fits 32 bits:
  * floor(v / 2^k) plus bit k - 1 of v (no 64-bit add). */
 XGO_ALWAYS_INLINE uint32_t xgo_round_shr64(uint64_t v, unsigned k)
 {
-#if XGO_CORE_NARROW_CPU
+#if !XGO_CORE_DIV64_NATIVE /* any 32-bit core: a 64-bit add and shift cost more there too */
     const uint32_t hi = (uint32_t)(v >> 32), lo = (uint32_t)v;
     if (k >= 32u) {
         return (hi >> (k - 32u)) + (k == 32u ? lo >> 31 : (hi >> (k - 33u)) & 1u);
@@ -114,7 +115,7 @@ XGO_ALWAYS_INLINE uint32_t xgo_round_shr64(uint64_t v, unsigned k)
  * shift: the low 32 bits of v >> k). */
 XGO_ALWAYS_INLINE int32_t xgo_shr64_to32(int64_t v, unsigned k)
 {
-#if XGO_CORE_NARROW_CPU
+#if !XGO_CORE_DIV64_NATIVE
     const uint32_t lo = (uint32_t)(uint64_t)v;
     const int32_t hi = (int32_t)(v >> 32);
     if (k >= 32u) {
@@ -132,7 +133,7 @@ XGO_ALWAYS_INLINE int32_t xgo_shr64_to32(int64_t v, unsigned k)
 /* v << k for 0 <= k <= 31 when v << k fits 64 bits. */
 XGO_ALWAYS_INLINE uint64_t xgo_shl64(uint64_t v, unsigned k)
 {
-#if XGO_CORE_NARROW_CPU
+#if !XGO_CORE_DIV64_NATIVE
     const uint32_t hi = (uint32_t)(v >> 32), lo = (uint32_t)v;
     if (k == 0u) {
         return v;
