@@ -562,35 +562,34 @@ static const uint16_t recip_tab[130] = {
     17120, 17050, 16981, 16913, 16845, 16777, 16710, 16644, 16578, 16513, 16448, 16384, 16320,
 };
 
-/* One step of restoring division: the next quotient bit. */
-#define RESTORING_STEP(r, q, d) \
-    do {                        \
-        (r) <<= 1;              \
-        (q) <<= 1;              \
-        if ((r) >= (d)) {       \
-            (r) -= (d);         \
-            (q) |= 1u;          \
-        }                       \
-    } while (0)
 #endif
 
 /* floor(m * 2^29 / e) for m * 2^6 <= e <= 2^31 (2^31 only on a diagonal,
  * with m = 0): the residual ratio, at most
  * 2^23. Exact on every target (same result): one instruction on a 64-bit
- * host, two 16-bit digit steps with a 32-bit divider, a 24-step restoring
- * division without one (the remainder stays below e). */
+ * host, two 16-bit digit steps with a 32-bit divider, two table-reciprocal
+ * steps without one. */
 static uint32_t residual_q29(uint32_t m, uint32_t e)
 {
 #if XGO_CORE_DIV64_NATIVE
     return (uint32_t)(((uint64_t)m << 29) / e);
 #elif XGO_CORE_NARROW_CPU
-    /* The top 12 bits of the quotient, qt = floor(m 2^17 / e), from the
-     * reciprocal table (never above it, and less than one below: qt or
-     * qt - 1), its remainder in 32 bits (in [0, 2e): exact modulo 2^32),
-     * then 12 restoring steps for the low bits. */
-    uint32_t big = e, q, r;
+    /* Two 12-bit digits from the reciprocal rc ~ 2^45 / (e 2^s) of the
+     * table's chord (never above it, less than 3.5 below, >= 2^14):
+     * - the top, qt = floor(m 2^17 / e): the estimate ((m >> 8) rc) >> (20
+     *   - s) is qt or qt - 1, its remainder (in [0, 2e): exact modulo
+     *   2^32) decides;
+     * - the low, floor(r 2^12 / e) for that remainder r < e: the estimate
+     *   (((r 2^s) >> 15) rc) >> 18 (a product below 2^31) falls short of
+     *   r 2^12 / e by less than 0.875 (rc's error times a quotient below
+     *   2^12) + 0.125 (the truncated r, 2^27 / (e 2^s)) = 1, so it is the
+     *   digit or one less, and again the remainder (in [0, 2e)) decides.
+     * It replaced 12 restoring steps (M0: about 70 instructions). Checked
+     * equal to the 64-bit division on 2 * 10^8 random pairs, 7.7 * 10^7
+     * pairs around every table node at the three shifts and 1.5 * 10^9
+     * pairs with e over its whole range (a throwaway harness). */
+    uint32_t big = e, q, r, rc, lo;
     unsigned s = 0;
-    int i;
     while (big < 0x40000000u) { /* e >= 2^28: at most twice */
         big <<= 1;
         ++s;
@@ -598,21 +597,19 @@ static uint32_t residual_q29(uint32_t m, uint32_t e)
     {
         const uint32_t k = (big >> 23) - 128u, f = (big >> 7) & 0xFFFFu;
         const uint32_t a = recip_tab[k], b = recip_tab[k + 1u];
-        const uint32_t rc = a - (((a - b) * f) >> 16) - 2u; /* <= 2^45 / big, within 3.5 */
-        q = ((m >> 8) * rc) >> (20u - s);                    /* m >> 8 < 2^17, rc <= 2^15 */
+        rc = a - (((a - b) * f) >> 16) - 2u; /* <= 2^45 / big, within 3.5 */
     }
-    r = (m << 17) - q * e; /* modulo 2^32; the true value is in [0, 2e) */
+    q = ((m >> 8) * rc) >> (20u - s); /* m >> 8 < 2^17, rc <= 2^15 */
+    r = (m << 17) - q * e;            /* modulo 2^32; the true value is in [0, 2e) */
     if (r >= e) {
         r -= e;
         ++q;
     }
-    for (i = 0; i < 3; ++i) { /* 4 steps a round: less loop overhead at -Os */
-        RESTORING_STEP(r, q, e);
-        RESTORING_STEP(r, q, e);
-        RESTORING_STEP(r, q, e);
-        RESTORING_STEP(r, q, e);
+    lo = (((r << s) >> 15) * rc) >> 18; /* r 2^s < 2^31 */
+    if ((r << 12) - lo * e >= e) {      /* the remainder, modulo 2^32 as above */
+        ++lo;
     }
-    return q;
+    return (q << 12) | lo;
 #else
     uint32_t rem;
     return div_shifted(m, e, &rem) >> 3;
