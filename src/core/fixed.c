@@ -377,7 +377,7 @@ static int32_t div3_small(int32_t v)
  * |v| < 2^31. On a Cortex-M0 the unsigned product of |v| (no sign
  * fix-ups; the rounding mirrored for v < 0), elsewhere one multiply: the
  * same value. */
-static int32_t mul_q34_round(int32_t t, int32_t v)
+XGO_ALWAYS_INLINE int32_t mul_q34_round(int32_t t, int32_t v)
 {
 #if XGO_CORE_NARROW_CPU
     const uint32_t u = v < 0 ? 0u - (uint32_t)v : (uint32_t)v;

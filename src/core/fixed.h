@@ -185,7 +185,7 @@ static inline xgo_bam_t xgo_mdeg_to_bam(int32_t mdeg)
 
 /* binary angle -> mdeg in [-180000, 180000] (angles past half a turn are
  * negative), rounded to nearest. Max error 0.5 mdeg (exact rounding). */
-static inline int32_t xgo_bam_to_mdeg(xgo_bam_t a)
+XGO_ALWAYS_INLINE int32_t xgo_bam_to_mdeg(xgo_bam_t a)
 {
 #if XGO_CORE_NARROW_CPU
     /* The same rounded product in 32-bit pieces (a Cortex-M0 has no

@@ -125,14 +125,16 @@ typedef struct planar_s {
     int32_t l1, l2;     /* q4 */
     int64_t sum_sq;     /* l1^2 + l2^2 */
     int64_t two_l1l2;   /* 2 l1 l2, and the shift that cuts it to 30 bits */
-    int64_t d_sq;       /* abad_offset_um^2 */
-    unsigned d_shift;
-    const xgo_profile_t *p;
-    xgo_bam_t knee_off; /* g = x1 + knee_off */
+    int64_t l1_dn;      /* l1 times dn: a constant of planar_ik's (a, b) */
+    int32_t dn;         /* 2 l1 l2 cut to 30 bits */
+    uint8_t d_shift;
     /* Only a projection needs the limits as binary angles and the boundary
      * arcs of the reachable region (they depend on the limits only):
-     * computed on the first projection, reused by the second branch. */
-    int arcs_ready;
+     * computed on the first projection, reused by the second branch.
+     * (Bytes, as d_shift: the struct is on the tick's deepest stack path.) */
+    uint8_t arcs_ready;
+    const xgo_profile_t *p;
+    xgo_bam_t knee_off; /* g = x1 + knee_off */
     int32_t g_lo, g_hi; /* geometric knee angle limits, signed BAM */
     int32_t t_lo, t_hi; /* hip pitch limits, signed BAM */
     int32_t hip_r[2];    /* g at g_lo / g_hi: radius of the foot's circle about the hip, q4 */
@@ -277,7 +279,8 @@ static int planar_ik(planar_t *pl, int32_t x, int32_t h, leg_solution_t *s)
 {
     const int64_t r2 = square_wide(x) + square_wide(h);
     const int64_t n = r2 - pl->sum_sq, d = pl->two_l1l2;
-    int32_t dn, nn;
+    const int32_t dn = pl->dn;
+    int32_t nn;
     uint32_t cn;
     if (n > d || n < -d) {
         planar_project(pl, x, h, &s->g, &s->t2);
@@ -285,7 +288,6 @@ static int planar_ik(planar_t *pl, int32_t x, int32_t h, leg_solution_t *s)
     }
     /* sin g = n / d, cos g = sqrt((d - n)(d + n)) / d; n and d scaled to
      * 30 bits so the product fits 64 bits (relative precision 2^-30). */
-    dn = xgo_shr64_to32(d, pl->d_shift);
     nn = xgo_shr64_to32(n, pl->d_shift);
     nn = nn > dn ? dn : (nn < -dn ? -dn : nn);
     cn = sqrt64_round_near(xgo_umul_wide((uint32_t)(dn - nn), (uint32_t)(dn + nn))); /* < 2^30 */
@@ -297,7 +299,7 @@ static int planar_ik(planar_t *pl, int32_t x, int32_t h, leg_solution_t *s)
      * a and b are cut to 30 bits first so the products fit 64 bits. */
     {
         int64_t a = (int64_t)xgo_umul_wide((uint32_t)pl->l2, cn);
-        int64_t b = xgo_mul_wide(pl->l1, dn) + xgo_mul_wide(pl->l2, nn);
+        int64_t b = pl->l1_dn + xgo_mul_wide(pl->l2, nn);
         uint64_t m = (uint64_t)a | (uint64_t)(b < 0 ? -b : b);
         unsigned kk = xgo_bit_length(m);
         const unsigned cut = kk > 30u ? kk - 30u : 0u;
@@ -427,9 +429,12 @@ static void planar_init(planar_t *pl, const xgo_profile_t *p)
     pl->knee_off = xgo_mdeg_to_bam(p->knee_offset_mdeg);
     pl->sum_sq = square_wide(pl->l1) + square_wide(pl->l2);
     pl->two_l1l2 = 2 * xgo_mul_wide(pl->l1, pl->l2);
-    pl->d_shift = xgo_bit_length((uint64_t)pl->two_l1l2);
-    pl->d_shift = pl->d_shift > 30u ? pl->d_shift - 30u : 0u;
-    pl->d_sq = square_wide(p->abad_offset_um);
+    {
+        const unsigned bits = xgo_bit_length((uint64_t)pl->two_l1l2);
+        pl->d_shift = (uint8_t)(bits > 30u ? bits - 30u : 0u);
+    }
+    pl->dn = xgo_shr64_to32(pl->two_l1l2, pl->d_shift);
+    pl->l1_dn = mul_cold(pl->l1, pl->dn);
     pl->arcs_ready = 0;
 }
 
@@ -464,7 +469,7 @@ static int leg_ik_in(planar_t *pl, xgo_leg_t leg, const xgo_vec3_t *foot_um, int
      * the axis, h its distance along the leg plane (Pythagoras with d). A
      * target closer to the axis than d is in no leg plane (h = 0 then). */
     wp = (side > 0 ? y : -y) + d; /* |wp| <= 2^21 */
-    h2 = square_wide(wp) + square_wide(z) - pl->d_sq;
+    h2 = xgo_mul_wide(wp - d, wp + d) + square_wide(z); /* wp^2 - d^2 + z^2, exactly */
     inside_axis_cylinder = h2 < 0;
     h_abs = h2 > 0 ? (int32_t)sqrt64_round_near((uint64_t)h2 << (2 * Q4_SHIFT)) : 0; /* q4, < 2^26 */
 
@@ -625,8 +630,9 @@ void xgo_body_ik(const xgo_profile_t *p, const xgo_body_pose_t *pose,
  * widening multiply (xgo_mul_wide is four MULS and carries there), so it
  * forms S in 32-bit pieces, v = vh * 2^11 + vl: rq * vh <= 2^29 and
  * rq * vl < 2^29, three of each fit; elsewhere S is three 64-bit products.
- * Both are exact: the same result everywhere. */
-static int32_t dot3_q18(int32_t q0, int32_t q1, int32_t q2, int32_t v0, int32_t v1, int32_t v2)
+ * Both are exact: the same result everywhere. Inline: twelve a tick in
+ * the body IK, where a call cost a third of it on the M0. */
+XGO_ALWAYS_INLINE int32_t dot3_q18(int32_t q0, int32_t q1, int32_t q2, int32_t v0, int32_t v1, int32_t v2)
 {
 #if XGO_CORE_NARROW_CPU
     const int32_t hi = q0 * (v0 >> 11) + q1 * (v1 >> 11) + q2 * (v2 >> 11);
@@ -636,6 +642,13 @@ static int32_t dot3_q18(int32_t q0, int32_t q1, int32_t q2, int32_t v0, int32_t 
     const int64_t sum = (int64_t)q0 * v0 + (int64_t)q1 * v1 + (int64_t)q2 * v2;
     return (int32_t)((sum + (1 << 17)) >> 18);
 #endif
+}
+
+/* The same out of line, for the colder body-to-machine rotation (inline,
+ * as in the body IK's loop, it would cost flash for little). */
+static int32_t dot3_q18_cold(int32_t q0, int32_t q1, int32_t q2, int32_t v0, int32_t v1, int32_t v2)
+{
+    return dot3_q18(q0, q1, q2, v0, v1, v2);
 }
 
 #define NEAR_LIMIT_UM ((1 << 22) - 1)
@@ -759,9 +772,9 @@ void xgo_body_to_machine_rotated(const xgo_body_pose_t *pose, const xgo_q30_t ro
     for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
         const int32_t bx = body_um[leg].x, by = body_um[leg].y, bz = body_um[leg].z;
         if (near3(bx, by, bz)) {
-            machine_um[leg].x = sat_i32((int64_t)dot3_q18(q[0], q[1], q[2], bx, by, bz) + pose->x_um);
-            machine_um[leg].y = sat_i32((int64_t)dot3_q18(q[3], q[4], q[5], bx, by, bz) + pose->y_um);
-            machine_um[leg].z = sat_i32((int64_t)dot3_q18(q[6], q[7], q[8], bx, by, bz) + pose->z_um);
+            machine_um[leg].x = sat_i32((int64_t)dot3_q18_cold(q[0], q[1], q[2], bx, by, bz) + pose->x_um);
+            machine_um[leg].y = sat_i32((int64_t)dot3_q18_cold(q[3], q[4], q[5], bx, by, bz) + pose->y_um);
+            machine_um[leg].z = sat_i32((int64_t)dot3_q18_cold(q[6], q[7], q[8], bx, by, bz) + pose->z_um);
         } else {
             machine_um[leg].x = sat_i32(dot3_q30_far(rot[0], rot[1], rot[2], bx, by, bz) + pose->x_um);
             machine_um[leg].y = sat_i32(dot3_q30_far(rot[3], rot[4], rot[5], bx, by, bz) + pose->y_um);
