@@ -792,6 +792,35 @@ static void test_body_ik_differences_beyond_int32(void)
     TEST_ASSERT_EQUAL_INT32(1000, legs[XGO_LEG_LF].z);
 }
 
+/* xgo_body_rotation takes a short cut when the yaw is 0 (no table, 4
+ * products instead of 14): it must give exactly what the general formula
+ * gives with sin yaw = 0, cos yaw = 1, which a yaw of one full turn
+ * (360000 mdeg, binary angle 0) still takes. */
+static void test_body_rotation_without_yaw_is_the_general_one(void)
+{
+    static const int32_t edge[] = {0, 1, -1, 90000, -90000, 180000, -180000, 45000, 359999, INT32_MAX, INT32_MIN};
+    const size_t ne = sizeof edge / sizeof edge[0];
+    uint64_t seed = 0x5eed1234abcdULL;
+    long n;
+    TEST_ASSERT_EQUAL_UINT32(0u, xgo_mdeg_to_bam(360000));
+    for (n = 0; n < 200000; ++n) {
+        xgo_body_pose_t pose;
+        xgo_q30_t fast[XGO_ROT_COUNT], general[XGO_ROT_COUNT];
+        memset(&pose, 0, sizeof pose);
+        if (n < (long)(ne * ne)) {
+            pose.roll_mdeg = edge[n % (long)ne];
+            pose.pitch_mdeg = edge[n / (long)ne];
+        } else {
+            pose.roll_mdeg = (int32_t)(xgo_test_xorshift64(&seed) % 720001u) - 360000;
+            pose.pitch_mdeg = (int32_t)(xgo_test_xorshift64(&seed) % 720001u) - 360000;
+        }
+        xgo_body_rotation(&pose, fast);
+        pose.yaw_mdeg = 360000;
+        xgo_body_rotation(&pose, general);
+        TEST_ASSERT_EQUAL_INT32_ARRAY(general, fast, XGO_ROT_COUNT);
+    }
+}
+
 /* ------------------------------------------------------------ byte codes */
 
 /* The vendor library's encoder, as Python evaluates it in double. */
@@ -909,6 +938,7 @@ int main(void)
     RUN_TEST(test_body_ik_against_reference_over_register_ranges);
     RUN_TEST(test_body_ik_identities);
     RUN_TEST(test_body_ik_differences_beyond_int32);
+    RUN_TEST(test_body_rotation_without_yaw_is_the_general_one);
     RUN_TEST(test_byte_codes_match_the_vendor_library);
     RUN_TEST(test_twelve_register_blocks);
     return UNITY_END();
