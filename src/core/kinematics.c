@@ -107,7 +107,7 @@ static uint32_t sqrt64_round_near(uint64_t v)
  * the products within int64. On a Cortex-M0 three wide products instead of
  * four (Karatsuba: a wide product is four MULS and carries there),
  * elsewhere four single multiplies; the same exact value. */
-static void complex_mul(int32_t a, int32_t b, int32_t c, int32_t d, int64_t *re, int64_t *im)
+XGO_ALWAYS_INLINE void complex_mul(int32_t a, int32_t b, int32_t c, int32_t d, int64_t *re, int64_t *im)
 {
 #if XGO_CORE_NARROW_CPU
     const int64_t k1 = xgo_mul_wide(c, a + b), k2 = xgo_mul_wide(a, d - c), k3 = xgo_mul_wide(b, c + d);
