@@ -120,6 +120,9 @@ typedef struct xgo_gait_s {
     uint8_t type;        /* gait table in use */
     uint8_t standing;    /* 1 = stopped, four feet at stance */
     uint8_t brake;       /* slowing down until a pending gait switch fits */
+    uint8_t land_is_td;  /* bit leg: land_q8 is the touchdown point of the cached
+                            velocity and cadence (cache_v, cache_rate_fit; in what
+                            was padding) */
     int32_t v_ramp[3];   /* produced vx, vy (um/s), vyaw (mdeg/s) */
 
     /* ---- caches (pure functions of the keys; save work in steady state) ---- */
@@ -130,7 +133,7 @@ typedef struct xgo_gait_s {
     uint32_t cache_rate_fit;
     uint8_t cache_cmd_type;
     uint8_t cache_v_type;
-    uint16_t cache_tau_q16;    /* the stance time at cache_rate_fit (in what was padding) */
+    uint16_t cache_swing_q16;  /* the swing time at cache_rate_fit (in what was padding) */
 
     /* ---- diagnostics ---- */
     uint32_t ticks;           /* ticks since init */

@@ -167,6 +167,7 @@ static void invalidate_caches(xgo_gait_t *g)
     g->cache_lambda_q16 = 65536;
     g->cache_rate_base = 0;
     g->cache_rate_fit = 0;
+    g->land_is_td = 0;
 }
 
 void xgo_gait_init(xgo_gait_t *g, const xgo_vec3_t stance_um[XGO_LEG_COUNT])
@@ -222,11 +223,23 @@ static uint32_t half_stride_y(int32_t w_mdeg_s)
 /* Touchdown point of a leg: the stance point plus half the stance travel,
  * to second order so that the stance arc is centred on the stance point:
  * p_td = nom + f tau + (w x f) tau^2 / 2, f = v + w x nom, tau = T_st / 2. */
-static void touchdown_q8(const xgo_gait_t *g, const gait_tick_t *x, int leg, int32_t td[2])
+static void touchdown_q8(const xgo_gait_t *g, gait_tick_t *x, int leg, int32_t td[2])
 {
     int32_t f[2];
     int32_t wf[2];
     int c;
+    if (!x->have_tau) {
+        /* the stance time at the fitted cadence, of the table it was fitted
+         * for; < 2^16, as the short products need (mul_q_u16): the rate is
+         * at least the slowest nominal rate (RATE(1200) >> 8 = 27962; every
+         * cap is faster), so tau <= KTAU(3, 4) / 27962 = 29491; tau^2 / 2^17
+         * < 2^15. Only ticks whose touchdown points moved need it (a division
+         * a steady tick less on an M0). */
+        x->tau_q16 = table_of(g->cache_v_type)->k_tau / (g->cache_rate_fit >> 8);
+        XGO_ASSERT(x->tau_q16 < 65536u);
+        x->tau2_q16 = (uint32_t)mul_q_u16((int32_t)x->tau_q16, x->tau_q16, 17u);
+        x->have_tau = 1;
+    }
     gait_foot_velocity(x->vel, x->w_q24, g->stance_um[leg][0], g->stance_um[leg][1], f);
     wf[0] = -mul_q(x->w_q24, f[1], 24u);
     wf[1] = mul_q(x->w_q24, f[0], 24u);
@@ -432,12 +445,15 @@ static uint32_t fit_cadence(xgo_gait_t *g, const gait_tick_t *x)
             rate_fit = x->t->rate_max;
         }
         g->cache_rate_fit = rate_fit;
-        /* < 2^16, as the short products with it need (mul_q_u16): rate_fit
-         * is at least the slowest nominal rate (RATE(1200) >> 8 = 27962;
-         * every cap is faster), so tau <= KTAU(3, 4) / 27962 = 29491. Kept
-         * with the rate: a library division per tick less on an M0. */
-        XGO_ASSERT(x->t->k_tau / (rate_fit >> 8) < 65536u);
-        g->cache_tau_q16 = (uint16_t)(x->t->k_tau / (rate_fit >> 8));
+        /* the swing time at that rate (move_feet): < 2^16, as the short
+         * products with it need (mul_q_u16): rate_fit is at least the
+         * slowest nominal rate (RATE(1200) >> 8 = 27962; every cap is
+         * faster), so it is at most KSWING(1, 2) / 27962 = 39321. Kept with
+         * the rate: no library division in a steady tick on an M0. */
+        XGO_ASSERT(x->t->k_swing / (rate_fit >> 8) < 65536u);
+        g->cache_swing_q16 = (uint16_t)(x->t->k_swing / (rate_fit >> 8));
+        /* the touchdown points move with the velocity and the cadence */
+        g->land_is_td = 0;
     }
     return g->cache_rate_fit;
 }
@@ -494,7 +510,7 @@ static void pick_cadence(xgo_gait_t *g, gait_tick_t *x)
     uint32_t rate_fit;
     slew_rate_base(g, x);
     rate_fit = fit_cadence(g, x);
-    x->tau_q16 = g->cache_tau_q16; /* k_tau / (rate_fit >> 8), fit_cadence */
+    x->have_tau = 0; /* touchdown_q8 works tau out if a touchdown point moved */
     x->rate = transient_rate(g, x, rate_fit);
     if (x->rate > rate_fit) {
         g->boosted_ticks++;
@@ -664,14 +680,22 @@ static int32_t land_follow(int32_t u)
 
 static void land_point(xgo_gait_t *g, int leg, int32_t follow, int32_t td[2])
 {
+    const uint8_t bit = (uint8_t)(1u << leg);
+    int same = 1;
     int c;
     if (follow != 1 << 26) {
         for (c = 0; c < 2; ++c) {
-            td[c] = g->land_q8[leg][c] + mul_q(td[c] - g->land_q8[leg][c], follow, 26u);
+            const int32_t to = g->land_q8[leg][c] + mul_q(td[c] - g->land_q8[leg][c], follow, 26u);
+            same &= to == td[c];
+            td[c] = to;
         }
     }
     g->land_q8[leg][0] = td[0];
     g->land_q8[leg][1] = td[1];
+    /* landing point = touchdown point: while the velocity and the cadence
+     * stay (the cache key of fit_cadence), so does the touchdown point, and
+     * following it changes nothing (a zero gap moves by zero) */
+    g->land_is_td = (uint8_t)(same ? g->land_is_td | bit : g->land_is_td & ~bit);
 }
 
 /* Swing: from the lift-off point to the touchdown point (which tracks the
@@ -731,8 +755,16 @@ static void swing_step(xgo_gait_t *g, gait_tick_t *x, int leg)
         swing_weights(x->t, theta, &x->weights);
         x->have_weights = 1;
     }
-    touchdown_q8(g, x, leg, td);
-    land_point(g, leg, wt->follow, td);
+    if ((g->land_is_td >> leg) & 1u) {
+        /* the landing point is this velocity's touchdown point (land_point):
+         * in a steady walk no touchdown_q8 (three foot velocities' worth of
+         * products) */
+        td[0] = g->land_q8[leg][0];
+        td[1] = g->land_q8[leg][1];
+    } else {
+        touchdown_q8(g, x, leg, td);
+        land_point(g, leg, wt->follow, td);
+    }
     gait_foot_velocity(x->vel, x->w_q24, g->lift_q8[leg][0] >> 8, g->lift_q8[leg][1] >> 8, f0);
     gait_foot_velocity(x->vel, x->w_q24, td[0] >> 8, td[1] >> 8, f1);
     for (c = 0; c < 2; ++c) {
@@ -751,12 +783,14 @@ static void move_feet(xgo_gait_t *g, gait_tick_t *x)
 {
     const uint32_t r = x->rate >> 8;
     int leg;
-    x->swing_q16 = x->t->k_swing / (r == 0u ? 1u : r);
+    /* at the fitted rate (no transient raised it) under the table it was
+     * fitted for, the one kept with it (fit_cadence) */
+    x->swing_q16 = x->rate == g->cache_rate_fit && x->t == table_of(g->cache_v_type)
+                       ? g->cache_swing_q16
+                       : x->t->k_swing / (r == 0u ? 1u : r);
     /* < 2^16 (mul_q_u16): the rate is at least rate_fit (pick_cadence), so
      * the swing lasts at most KSWING(1, 2) / 27962 = 39321 */
     XGO_ASSERT(x->swing_q16 < 65536u);
-    /* tau < 2^16 (pick_cadence), so tau^2 / 2^17 < 2^15 */
-    x->tau2_q16 = (uint32_t)mul_q_u16((int32_t)x->tau_q16, x->tau_q16, 17u);
     x->have_weights = 0;
     for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
         x->z_um[leg] = 0;

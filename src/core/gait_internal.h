@@ -64,7 +64,9 @@ typedef struct gait_tick_s {
     /* the cadence (cadence stage) */
     uint32_t tau_q16;    /* half the stance time at the fitted cadence, s Q16 */
     uint32_t swing_q16;  /* the swing's duration at this tick's rate, s Q16 */
-    uint32_t tau2_q16;   /* tau^2 / 2, s^2 Q16 (move_feet) */
+    uint32_t tau2_q16;   /* tau^2 / 2, s^2 Q16 */
+    int have_tau;        /* tau_q16, tau2_q16 hold them (worked out when a
+                            touchdown point is: touchdown_q8) */
     uint32_t rate;       /* phase advance of this tick */
     int32_t vf[XGO_LEG_COUNT][2]; /* ground velocity of each planted foot */
     /* events (phase stage) and trajectories */
