@@ -325,7 +325,10 @@ typedef struct xgo_motion_s {
     uint8_t servo_ready;      /* servo mode: home reached, unwritten joints captured */
     struct {                  /* 0x30..0x3C as last decoded (motion_pose.c) */
         uint8_t valid;            /* cleared when they are written or reset */
-        int32_t body[6];          /* 0x36..0x38, 0x33..0x35: mdeg, um */
+        uint8_t periodic;         /* bit axis: 0x39..0x3B, 0x80..0x82 run a periodic
+                                     motion on it (in what was padding) */
+        int32_t body[6];          /* 0x36..0x38, 0x33..0x35: mdeg, um; an axis with a
+                                     periodic motion: its phase step per tick instead */
         int32_t velocity[3];      /* 0x30..0x32: um/s, um/s, mdeg/s */
         int32_t mark_time_um;     /* 0x3C */
     } decoded;

@@ -35,20 +35,24 @@ static int32_t abs32(int32_t v)
 #define MS_TO_TICKS(ms) ((ms) * XGO_TICK_HZ / 1000u)
 #endif
 
-static void advance_periodic(xgo_motion_t *m, unsigned axis, uint8_t period_byte)
+/* The phase advance per tick of a periodic motion of period byte b (1..255). */
+static uint32_t periodic_step(uint8_t period_byte)
 {
     const uint32_t ticks = MS_TO_TICKS((uint32_t)xgo_period_byte_to_ms(period_byte));
     const uint32_t t = ticks < 2u ? 2u : ticks; /* 750..4000 ticks: never below 2 */
     /* One turn of phase per period: floor(2^32 / t) per tick, in 32 bits:
      * (2^32 - 1) / t, plus one when t divides 2^32 (a power of two). */
-    const uint32_t step = 0xFFFFFFFFu / t + ((t & (t - 1u)) == 0u ? 1u : 0u);
-    m->periodic_phase[axis] += step;
+    return 0xFFFFFFFFu / t + ((t & (t - 1u)) == 0u ? 1u : 0u);
 }
 
-/* amplitude * sin(phase), amplitude in the caller's unit */
+/* amplitude * sin(phase) rounded (xgo_mul_q(amplitude, sin, 30), whose
+ * saturation never acts here: |result| <= amplitude + 1, a quarter of a
+ * profile range), amplitude in the caller's unit. The shift by a constant
+ * is inline on an M0, xgo_mul_q's by a variable q two library calls. */
 static int32_t wave(xgo_bam_t phase, int32_t amplitude)
 {
-    return xgo_mul_q(amplitude, xgo_sin(phase), 30);
+    const int64_t p = xgo_mul_wide(amplitude, xgo_sin(phase));
+    return (int32_t)((p + ((int64_t)1 << 29)) >> 30);
 }
 
 /* The body pose the registers ask for: 0x33..0x38 (dead band at 0x7F/0x80),
@@ -69,8 +73,12 @@ static void set_pose(xgo_body_pose_t *pose, const int32_t v[PERIODIC_AXES])
  * clears decoded.valid then): they change a few times a second at most. */
 static void decode_registers(xgo_motion_t *m, const xgo_regs_t *r)
 {
+    static const uint8_t period_reg[PERIODIC_AXES] = {XGO_REG_PERIOD_ROLL, XGO_REG_PERIOD_PITCH,
+                                                      XGO_REG_PERIOD_YAW, XGO_REG_PERIOD_X,
+                                                      XGO_REG_PERIOD_Y, XGO_REG_PERIOD_Z};
     const xgo_profile_t *p = m->profile;
     int32_t *v = m->decoded.body;
+    unsigned axis;
     if (m->decoded.valid) {
         return;
     }
@@ -85,6 +93,18 @@ static void decode_registers(xgo_motion_t *m, const xgo_regs_t *r)
     m->decoded.velocity[1] = xgo_signed_byte_to_value(xgo_regs_get(r, XGO_REG_VY), XGO_VY_MAX_UM_S);
     m->decoded.velocity[2] = xgo_signed_byte_to_value(xgo_regs_get(r, XGO_REG_VYAW), XGO_VYAW_MAX_MDEG_S);
     m->decoded.mark_time_um = xgo_mark_time_byte_to_um(p, xgo_regs_get(r, XGO_REG_MARK_TIME));
+    /* The periodic motions (0x39..0x3B, 0x80..0x82: their writes clear
+     * valid too): an axis with one keeps its phase step where its static
+     * value was (unused while the motion runs), not worked out every tick
+     * (a library division on an M0). */
+    m->decoded.periodic = 0;
+    for (axis = 0; axis < PERIODIC_AXES; axis++) {
+        const uint8_t b = xgo_regs_get(r, period_reg[axis]);
+        if (b != 0) {
+            m->decoded.periodic = (uint8_t)(m->decoded.periodic | (1u << axis));
+            v[axis] = (int32_t)periodic_step(b);
+        }
+    }
 }
 
 /* The pose of the registers now; base: the same with each periodic
@@ -93,9 +113,6 @@ static void body_pose_from_registers(xgo_motion_t *m, const xgo_regs_t *r, xgo_b
                                      xgo_body_pose_t *base, xgo_body_pose_t *spread)
 {
     const xgo_profile_t *p = m->profile;
-    static const uint8_t period_reg[PERIODIC_AXES] = {XGO_REG_PERIOD_ROLL, XGO_REG_PERIOD_PITCH,
-                                                      XGO_REG_PERIOD_YAW, XGO_REG_PERIOD_X,
-                                                      XGO_REG_PERIOD_Y, XGO_REG_PERIOD_Z};
     int32_t v[PERIODIC_AXES], mid[PERIODIC_AXES], amp[PERIODIC_AXES];
     unsigned axis;
 
@@ -105,15 +122,14 @@ static void body_pose_from_registers(xgo_motion_t *m, const xgo_regs_t *r, xgo_b
      * position limit"), starting at the middle. (Filled axis by axis: no
      * memcpy/memset calls, every tick.) */
     for (axis = 0; axis < PERIODIC_AXES; axis++) {
-        const uint8_t b = xgo_regs_get(r, period_reg[axis]);
         const xgo_range_t *range = axis < 3 ? &p->body_mdeg[axis] : &p->body_um[axis - 3];
-        v[axis] = mid[axis] = m->decoded.body[axis];
-        amp[axis] = 0;
-        if (b == 0) {
+        if (((m->decoded.periodic >> axis) & 1u) == 0) {
+            v[axis] = mid[axis] = m->decoded.body[axis];
+            amp[axis] = 0;
             m->periodic_phase[axis] = 0;
             continue;
         }
-        advance_periodic(m, axis, b);
+        m->periodic_phase[axis] += (uint32_t)m->decoded.body[axis]; /* its step (decode_registers) */
         mid[axis] = (range->lo + range->hi) / 2;
         amp[axis] = (range->hi - range->lo) / 4;
         v[axis] = mid[axis] + wave(m->periodic_phase[axis], amp[axis]);
