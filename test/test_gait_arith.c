@@ -143,6 +143,45 @@ static void test_scale_q16_is_the_truncated_wide_product(void)
     }
 }
 
+/* The transient rule's 32-bit settlement (gait_quick_fit) never settles a
+ * case where s r > TICKS_PER_S d rate, and settles most of the far ones:
+ * random values of every magnitude, the guards' edges and near misses. */
+static void test_quick_fit_only_settles_fitting_feet(void)
+{
+    static const uint32_t s_edge[] = {0u, 1u, (1u << 20) - 1u, 1u << 20, 0xFFFFFFFFu};
+    static const uint32_t d_edge[] = {1u, (1u << 17) - 1u, 1u << 17, 0xFFFFFFFFu};
+    static const uint32_t rate_edge[] = {0u, (1u << 20) - 1u, 1u << 20, (64u << 20) - 1u, 64u << 20,
+                                         0xFFFFFFFFu};
+    uint32_t seed = 11u;
+    unsigned k, a, b, c, settled = 0;
+    for (k = 0; k < 2000000; ++k) {
+        const uint32_t s = lcg(&seed) >> (k % 32u);
+        const uint32_t r = lcg(&seed);
+        const uint32_t d = lcg(&seed) >> (12u + k % 20u);
+        const uint32_t rate = lcg(&seed) >> (4u + k % 8u);
+        const int fits = (uint64_t)s * r <= (uint64_t)TICKS_PER_S * d * rate;
+        if (gait_quick_fit(s, r, d, rate)) {
+            TEST_ASSERT_TRUE(fits);
+            settled++;
+        }
+    }
+    TEST_ASSERT_TRUE(settled > 100000u);
+    for (a = 0; a < sizeof s_edge / sizeof s_edge[0]; ++a) {
+        for (b = 0; b < sizeof d_edge / sizeof d_edge[0]; ++b) {
+            for (c = 0; c < sizeof rate_edge / sizeof rate_edge[0]; ++c) {
+                const uint32_t r[] = {0u, (1u << 20) - 1u, 1u << 20, 0xFFFFFFFFu};
+                unsigned i;
+                for (i = 0; i < 4u; ++i) {
+                    if (gait_quick_fit(s_edge[a], r[i], d_edge[b], rate_edge[c])) {
+                        TEST_ASSERT_TRUE((uint64_t)s_edge[a] * r[i] <=
+                                         (uint64_t)TICKS_PER_S * d_edge[b] * rate_edge[c]);
+                    }
+                }
+            }
+        }
+    }
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -150,5 +189,6 @@ int main(void)
     RUN_TEST(test_mul_w_q24_matches_the_wide_product);
     RUN_TEST(test_yaw_widening_is_the_exact_division);
     RUN_TEST(test_scale_q16_is_the_truncated_wide_product);
+    RUN_TEST(test_quick_fit_only_settles_fitting_feet);
     return UNITY_END();
 }

@@ -491,6 +491,11 @@ static uint32_t transient_rate(const xgo_gait_t *g, gait_tick_t *x, uint32_t rat
                 rate = t->rate_max;
                 continue;
             }
+#if XGO_CORE_NARROW_CPU
+            if (gait_quick_fit(abs_u(fm[c]), remaining, (uint32_t)d, rate)) {
+                continue; /* travel <= room: the two wide products spared */
+            }
+#endif
             travel = xgo_umul_wide(abs_u(fm[c]), remaining);
             room = xgo_umul_wide(TICKS_PER_S * (uint32_t)d, rate);
             if (travel > room) {

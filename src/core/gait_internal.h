@@ -181,6 +181,23 @@ static inline uint32_t abs_u(int32_t v)
     return v < 0 ? 0u - (uint32_t)v : (uint32_t)v;
 }
 
+/* The transient rule's test travel > room (gait.c, transient_rate), with
+ * travel = s r (a planted foot's speed s in um/s times r, the phase left)
+ * and room = TICKS_PER_S d rate (d um to the edge of its budget), is two
+ * 32 x 32 -> 64 products: on a Cortex-M0 four MULS each. Most feet are far
+ * from the edge, and 32 bits settle them: travel <= s ((r >> 20) + 1) 2^20
+ * and room >= TICKS_PER_S d (rate >> 20) 2^20, so when the first factor is
+ * at most the second, travel <= room. Both fit 32 bits when s < 2^20
+ * (1 m/s), d < 2^17 (131 mm) and rate >> 20 < 64 (every cap is below:
+ * 2^13 / 220 ms; TICKS_PER_S d (rate >> 20) < 500 2^17 64 < 2^32). Returns
+ * 1 when that shows travel <= room, 0 when the exact test must run.
+ * test_gait_arith checks it never says 1 where travel > room. */
+static inline int gait_quick_fit(uint32_t s, uint32_t r, uint32_t d, uint32_t rate)
+{
+    return s < (1u << 20) && d < (1u << 17) && (rate >> 20) < 64u &&
+           s * ((r >> 20) + 1u) <= (uint32_t)TICKS_PER_S * d * (rate >> 20);
+}
+
 /* Foot velocity relative to the ground for a point (x, y) of the body:
  * v + w x p, in um/s. w in rad/s Q24. About ten a tick: one copy (gait.c)
  * with its two products inline. */
