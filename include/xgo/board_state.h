@@ -287,7 +287,8 @@ typedef struct xgo_motion_s {
     uint8_t action_id;        /* running preset action (incl. 255 reset), 0 none */
     uint8_t contact;          /* bit leg: foot on the ground this tick */
     uint8_t feet_as_solved;   /* the joints are where the last IK put them, all feet
-                                 reached: the feet are ik_cache's (xgo_motion_feet_body) */
+                                 reached: the feet are ik_cache's (xgo_motion_feet_body;
+                                 without odometry the joints are compared there) */
     xgo_gait_t gait;
     xgo_action_player_t actions;
     xgo_servos_t servos;

@@ -549,11 +549,16 @@ static XGO_OWN_FRAME void measure_feet(xgo_motion_t *m, int contact_known)
     /* The joints where this tick's IK put them and every foot reachable:
      * the feet are where they were asked to be (FK of these angles agrees
      * within the IK's 2.4 um), so spare the FK. */
+    if (!XGO_WITH_ODOMETRY && contact_known) {
+        /* The contacts are known and no odometry takes the feet: only an
+         * observer might (xgo_motion_feet_body), so the joints are compared
+         * with the IK's when one asks, not every tick (the servos and the
+         * IK cache change in the tick alone: the same answer). */
+        m->feet_as_solved = (uint8_t)(m->ik_cache.valid && m->ik_cache.projected == 0);
+        return;
+    }
     m->feet_as_solved = (uint8_t)(contact_known && m->ik_cache.valid && m->ik_cache.projected == 0 &&
                                   joints_as_solved(m));
-    if (!XGO_WITH_ODOMETRY && contact_known) {
-        return; /* the contacts are known and no odometry takes the feet */
-    }
     if (m->feet_as_solved) {
         machine = m->ik_cache.feet;
     } else {
@@ -583,7 +588,9 @@ void xgo_motion_feet_body(const xgo_motion_t *m, xgo_vec3_t out[XGO_LEG_COUNT])
 {
     xgo_vec3_t feet_leg[XGO_LEG_COUNT];
     unsigned leg;
-    if (!m->feet_as_solved) {
+    /* without odometry measure_feet leaves the joints' half of the test to
+     * this (an observer's) call */
+    if (!m->feet_as_solved || (!XGO_WITH_ODOMETRY && !joints_as_solved(m))) {
         feet_of_joints(m, out);
         return;
     }
