@@ -259,17 +259,25 @@ static void transition_step(xgo_motion_t *m, const xgo_body_pose_t *home, xgo_ve
 
 /* ------------------------------------------------------------ whole unit */
 
-/* The gait's feet and contacts after a tick under cmd; returns its yaw rate. */
+/* A gait tick under cmd and its contacts (its feet in m->gait.foot_um);
+ * returns its yaw rate. */
+static int32_t gait_step(xgo_motion_t *m, const xgo_gait_command_t *cmd)
+{
+    xgo_gait_tick(&m->gait, cmd);
+    m->contact = (uint8_t)(m->gait.contact[0] | (m->gait.contact[1] << 1) | (m->gait.contact[2] << 2) |
+                           (m->gait.contact[3] << 3));
+    return m->gait.vyaw_mdeg_s;
+}
+
+/* The same with the gait's feet copied to feet. */
 static int32_t gait_feet(xgo_motion_t *m, const xgo_gait_command_t *cmd, xgo_vec3_t feet[XGO_LEG_COUNT])
 {
+    const int32_t yaw_rate = gait_step(m, cmd);
     unsigned leg;
-    xgo_gait_tick(&m->gait, cmd);
-    m->contact = 0;
     for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
-        m->contact |= (uint8_t)(m->gait.contact[leg] << leg);
         feet[leg] = m->gait.foot_um[leg];
     }
-    return m->gait.vyaw_mdeg_s;
+    return yaw_rate;
 }
 
 /* A running action: its keyframes, or while it holds them, the way to the
@@ -398,6 +406,7 @@ static XGO_OWN_FRAME int walk_tick(xgo_motion_t *m, xgo_gait_command_t *cmd,
                                          int32_t *yaw_rate_mdeg_s)
 {
     xgo_vec3_t feet[XGO_LEG_COUNT];
+    const xgo_vec3_t *at = feet; /* the settle's, or the gait's in place (no copy) */
     xgo_body_pose_t pose;
     int walking = 1;
     if (xgo_settle_active(&m->settle)) {
@@ -406,12 +415,13 @@ static XGO_OWN_FRAME int walk_tick(xgo_motion_t *m, xgo_gait_command_t *cmd,
         if (m->reach.searching && xgo_gait_is_standing(&m->gait)) {
             memset(cmd, 0, sizeof *cmd); /* the first step waits for a pose the stroke holds */
         }
-        *yaw_rate_mdeg_s = gait_feet(m, cmd, feet);
+        *yaw_rate_mdeg_s = gait_step(m, cmd);
+        at = m->gait.foot_um;
         walking = !xgo_gait_is_standing(&m->gait);
     }
     xgo_follow_tick(&m->follow, &m->pose_target, &pose);
     walking = walking || !xgo_follow_at(&m->follow, &m->pose_target);
-    solve_tick(m, &pose, feet);
+    solve_tick(m, &pose, at);
     return walking;
 }
 
