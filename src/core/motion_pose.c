@@ -55,19 +55,6 @@ static int32_t wave(xgo_bam_t phase, int32_t amplitude)
     return (int32_t)((p + ((int64_t)1 << 29)) >> 30);
 }
 
-/* The body pose the registers ask for: 0x33..0x38 (dead band at 0x7F/0x80),
- * each axis with a periodic motion (0x39..0x3B, 0x80..0x82) replaced by its
- * sinusoid. Advances the periodic phases. */
-static void set_pose(xgo_body_pose_t *pose, const int32_t v[PERIODIC_AXES])
-{
-    pose->roll_mdeg = v[0];
-    pose->pitch_mdeg = v[1];
-    pose->yaw_mdeg = v[2];
-    pose->x_um = v[3];
-    pose->y_um = v[4];
-    pose->z_um = v[5];
-}
-
 /* The body pose and the velocity command of 0x30..0x3C in their units,
  * decoded again only after they were written or reset (motion_writes.c
  * clears decoded.valid then): they change a few times a second at most. */
@@ -107,36 +94,49 @@ static void decode_registers(xgo_motion_t *m, const xgo_regs_t *r)
     }
 }
 
+/* A periodic motion on one axis (pose_axis): the sinusoid around the
+ * range's middle, its phase advanced by the step decode_registers kept. */
+static void periodic_axis(xgo_motion_t *m, unsigned axis, const xgo_range_t *range, int32_t *v,
+                          int32_t *mid, int32_t *amp)
+{
+    m->periodic_phase[axis] += (uint32_t)m->decoded.body[axis];
+    *mid = (range->lo + range->hi) / 2;
+    *amp = (range->hi - range->lo) / 4;
+    *v = *mid + wave(m->periodic_phase[axis], *amp);
+}
+
+/* One axis of the pose of the registers (body_pose_from_registers): its
+ * static value, or its periodic motion. Inline, once per axis: each axis's
+ * fields are then constant offsets (no arrays copied into the poses). */
+XGO_ALWAYS_INLINE void pose_axis(xgo_motion_t *m, unsigned axis, const xgo_range_t *range, int32_t *v,
+                                 int32_t *mid, int32_t *amp)
+{
+    if (((m->decoded.periodic >> axis) & 1u) == 0) {
+        *v = *mid = m->decoded.body[axis];
+        *amp = 0;
+        m->periodic_phase[axis] = 0;
+        return;
+    }
+    periodic_axis(m, axis, range, v, mid, amp);
+}
+
 /* The pose of the registers now; base: the same with each periodic
- * channel at its middle; spread: those channels' amplitudes, 0 elsewhere. */
+ * channel at its middle; spread: those channels' amplitudes, 0 elsewhere.
+ * A periodic motion replaces the static value on its axis: a sinusoid of
+ * half the axis' range around its middle (the spec's "half of the position
+ * limit"), starting at the middle. (Field by field: no memcpy/memset calls,
+ * every tick.) */
 static void body_pose_from_registers(xgo_motion_t *m, const xgo_regs_t *r, xgo_body_pose_t *pose,
                                      xgo_body_pose_t *base, xgo_body_pose_t *spread)
 {
     const xgo_profile_t *p = m->profile;
-    int32_t v[PERIODIC_AXES], mid[PERIODIC_AXES], amp[PERIODIC_AXES];
-    unsigned axis;
-
     decode_registers(m, r);
-    /* A periodic motion replaces the static value on its axis: a sinusoid
-     * of half the axis' range around its middle (the spec's "half of the
-     * position limit"), starting at the middle. (Filled axis by axis: no
-     * memcpy/memset calls, every tick.) */
-    for (axis = 0; axis < PERIODIC_AXES; axis++) {
-        const xgo_range_t *range = axis < 3 ? &p->body_mdeg[axis] : &p->body_um[axis - 3];
-        if (((m->decoded.periodic >> axis) & 1u) == 0) {
-            v[axis] = mid[axis] = m->decoded.body[axis];
-            amp[axis] = 0;
-            m->periodic_phase[axis] = 0;
-            continue;
-        }
-        m->periodic_phase[axis] += (uint32_t)m->decoded.body[axis]; /* its step (decode_registers) */
-        mid[axis] = (range->lo + range->hi) / 2;
-        amp[axis] = (range->hi - range->lo) / 4;
-        v[axis] = mid[axis] + wave(m->periodic_phase[axis], amp[axis]);
-    }
-    set_pose(pose, v);
-    set_pose(base, mid);
-    set_pose(spread, amp);
+    pose_axis(m, 0, &p->body_mdeg[0], &pose->roll_mdeg, &base->roll_mdeg, &spread->roll_mdeg);
+    pose_axis(m, 1, &p->body_mdeg[1], &pose->pitch_mdeg, &base->pitch_mdeg, &spread->pitch_mdeg);
+    pose_axis(m, 2, &p->body_mdeg[2], &pose->yaw_mdeg, &base->yaw_mdeg, &spread->yaw_mdeg);
+    pose_axis(m, 3, &p->body_um[0], &pose->x_um, &base->x_um, &spread->x_um);
+    pose_axis(m, 4, &p->body_um[1], &pose->y_um, &base->y_um, &spread->y_um);
+    pose_axis(m, 5, &p->body_um[2], &pose->z_um, &base->z_um, &spread->z_um);
 }
 
 /* Self-stabilisation (0x61 = 1) levels the body against the IMU: each tick
