@@ -140,13 +140,17 @@ static uint32_t fit_rate(uint32_t speed, uint32_t h, uint32_t k_rate)
     return (uint32_t)(xgo_umul_wide(q, k_rate) >> 11);
 }
 
-static void publish(xgo_gait_t *g, const int32_t z_um[XGO_LEG_COUNT])
+/* The feet's x, y and contacts; z is the swing's, set by swing_step (every
+ * swinging foot takes a swing step each tick), 0 for a planted foot. */
+static void publish(xgo_gait_t *g)
 {
     int leg;
     for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
         g->foot_um[leg].x = (g->pos_q8[leg][0] + 128) >> 8;
         g->foot_um[leg].y = (g->pos_q8[leg][1] + 128) >> 8;
-        g->foot_um[leg].z = z_um[leg];
+        if (!g->swinging[leg]) {
+            g->foot_um[leg].z = 0;
+        }
         g->contact[leg] = (uint8_t)!g->swinging[leg];
     }
 }
@@ -172,7 +176,6 @@ static void invalidate_caches(xgo_gait_t *g)
 
 void xgo_gait_init(xgo_gait_t *g, const xgo_vec3_t stance_um[XGO_LEG_COUNT])
 {
-    static const int32_t zero_z[XGO_LEG_COUNT] = { 0, 0, 0, 0 };
     int leg;
     int c;
     for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
@@ -203,7 +206,7 @@ void xgo_gait_init(xgo_gait_t *g, const xgo_vec3_t stance_um[XGO_LEG_COUNT])
     g->boosted_ticks = 0;
     g->clamped_ticks = 0;
     g->switches = 0;
-    publish(g, zero_z);
+    publish(g);
 }
 
 int xgo_gait_is_standing(const xgo_gait_t *g)
@@ -781,7 +784,7 @@ static void swing_step(xgo_gait_t *g, gait_tick_t *x, int leg)
                             mul_q(m0, wt->ca, 26u) + mul_q(m1, wt->cb, 26u);
     }
     /* the height is at most XGO_GAIT_MAX_HEIGHT_UM < 2^16 (lift_feet) */
-    x->z_um[leg] = mul_q_u16(wt->s2, (uint32_t)g->swing_height_um[leg], 30u);
+    g->foot_um[leg].z = mul_q_u16(wt->s2, (uint32_t)g->swing_height_um[leg], 30u);
 }
 
 static void move_feet(xgo_gait_t *g, gait_tick_t *x)
@@ -797,9 +800,6 @@ static void move_feet(xgo_gait_t *g, gait_tick_t *x)
      * the swing lasts at most KSWING(1, 2) / 27962 = 39321 */
     XGO_ASSERT(x->swing_q16 < 65536u);
     x->have_weights = 0;
-    for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
-        x->z_um[leg] = 0;
-    }
     for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
         if (x->moved[leg]) {
             continue;
@@ -832,7 +832,7 @@ static void publish_tick(xgo_gait_t *g, const gait_tick_t *x)
             g->rate = 0;
         }
     }
-    publish(g, x->z_um);
+    publish(g);
 }
 
 /* ------------------------------------------------------------ tick */

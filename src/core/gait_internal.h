@@ -71,7 +71,6 @@ typedef struct gait_tick_s {
     int32_t vf[XGO_LEG_COUNT][2]; /* ground velocity of each planted foot */
     /* events (phase stage) and trajectories */
     uint8_t moved[XGO_LEG_COUNT]; /* position already set this tick (touchdown) */
-    int32_t z_um[XGO_LEG_COUNT];  /* swing heights this tick */
     int have_weights;             /* weights holds a swing leg's this tick */
     gait_swing_weights_t weights;
 } gait_tick_t;
