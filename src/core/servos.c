@@ -66,6 +66,19 @@ void xgo_servos_follow(xgo_servos_t *s, const int32_t target_mdeg[XGO_SERVO_COUN
     if (max_step_mdeg < 0) {
         max_step_mdeg = 0;
     }
+    if (s->unloaded == 0) {
+        /* every joint loaded (walking, actions): no per-joint mask test */
+        for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
+            for (j = 0; j < XGO_JOINT_COUNT; j++, i++) {
+                const int32_t t = target_mdeg[i] < range[j].lo   ? range[j].lo
+                                  : target_mdeg[i] > range[j].hi ? range[j].hi
+                                                                 : target_mdeg[i];
+                s->target_mdeg[i] = t;
+                s->angle_mdeg[i] = step_toward(s->angle_mdeg[i], t, max_step_mdeg);
+            }
+        }
+        return;
+    }
     /* one pass instead of two; leg by joint, no i % 3 */
     for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
         for (j = 0; j < XGO_JOINT_COUNT; j++, i++) {
