@@ -393,21 +393,30 @@ static void ramp_velocity(xgo_gait_t *g, gait_tick_t *x)
         XGO_GAIT_YAW_ACCEL_MDEG_S2 / (int32_t)TICKS_PER_S,
     };
     int32_t prop[3];
+    /* the yaw widening of the reach (gait_reach_y) and of the stride budget
+     * (half_stride_y) is one value: worked out once, again only if the ramp
+     * moves the yaw rate */
+    int32_t yaw = g->v_ramp[2];
+    uint32_t widening = gait_yaw_widening_um(yaw);
     int leg;
     int c;
     for (c = 0; c < 3; ++c) {
         prop[c] = g->v_ramp[c] + clamp32(x->target[c] - g->v_ramp[c], -step_max[c], step_max[c]);
     }
     for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
-        int32_t ry = gait_reach_y(g->v_ramp[2]);
+        const int32_t ry = XGO_GAIT_REACH_Y_UM + (int32_t)widening;
         if (!g->swinging[leg] && ry > g->reach_y_um[leg]) {
             g->reach_y_um[leg] = ry;
         }
     }
     if (prop[0] != g->v_ramp[0] || prop[1] != g->v_ramp[1] || prop[2] != g->v_ramp[2]) {
         gait_governed_ramp(g, x->t, prop); /* a call only while ramping */
+        if (g->v_ramp[2] != yaw) {
+            yaw = g->v_ramp[2];
+            widening = gait_yaw_widening_um(yaw);
+        }
     }
-    x->hy = half_stride_y(g->v_ramp[2]);
+    x->hy = XGO_GAIT_HALF_STRIDE_Y_UM + widening;
     x->vel[0] = g->v_ramp[0];
     x->vel[1] = g->v_ramp[1];
     x->w_q24 = yaw_q24(g->v_ramp[2]);
