@@ -257,8 +257,10 @@ uint8_t xgo_angle_to_byte(int32_t mdeg)
      * angle there first changes nothing and keeps mdeg * 128 within 2^25:
      * 32-bit arithmetic. The quotient truncates toward zero, as C's. */
     int32_t m = mdeg > 180000 ? 180000 : (mdeg < -180000 ? -180000 : mdeg);
-    int32_t q = m >= 0 ? (int32_t)div180000((uint32_t)m * 128u + 90000u)
-                       : -(int32_t)div180000((uint32_t)-m * 128u + 90000u);
+    /* one division on |m| (one copy of div180000, inline), the sign after */
+    const uint32_t u = (uint32_t)(m < 0 ? -m : m);
+    const int32_t d = (int32_t)div180000(u * 128u + 90000u);
+    int32_t q = m < 0 ? -d : d;
     q += 128;
     if (q < 0) {
         q = 0;

@@ -130,6 +130,9 @@ void xgo_imu_reset_yaw(xgo_imu_t *imu)
  * so no 64-bit remainder is needed. */
 static int32_t wrap_mdeg(int64_t a)
 {
+    if (a >= -180000 && a < 180000) {
+        return (int32_t)a; /* already in range (the common case): no two calls */
+    }
     return xgo_wrap_mdeg(xgo_sat32(a));
 }
 
