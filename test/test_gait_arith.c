@@ -143,6 +143,23 @@ static void test_scale_q16_is_the_truncated_wide_product(void)
     }
 }
 
+/* yaw_q24's split constant: every edge and random rates of every size,
+ * against the full rounded product (mod 2^32, as mul_q). */
+static void test_yaw_q24_is_the_rounded_product(void)
+{
+    static const int32_t edges[] = {INT32_MIN, INT32_MIN + 1, -200001, -200000, -65537, -65536, -1,
+                                    0, 1, 65535, 65536, 200000, 200001, INT32_MAX};
+    uint32_t seed = 5u;
+    unsigned k, e;
+    for (e = 0; e < sizeof edges / sizeof edges[0]; ++e) {
+        TEST_ASSERT_EQUAL_INT32(reference_mul_q(edges[e], K_MDEG_TO_RAD_Q24_Q16, 16u), yaw_q24(edges[e]));
+    }
+    for (k = 0; k < 1000000; ++k) {
+        const int32_t w = (int32_t)lcg(&seed) >> (k % 32u);
+        TEST_ASSERT_EQUAL_INT32(reference_mul_q(w, K_MDEG_TO_RAD_Q24_Q16, 16u), yaw_q24(w));
+    }
+}
+
 /* The transient rule's 32-bit settlement (gait_quick_fit) never settles a
  * case where s r > TICKS_PER_S d rate, and settles most of the far ones:
  * random values of every magnitude, the guards' edges and near misses. */
@@ -190,5 +207,6 @@ int main(void)
     RUN_TEST(test_yaw_widening_is_the_exact_division);
     RUN_TEST(test_scale_q16_is_the_truncated_wide_product);
     RUN_TEST(test_quick_fit_only_settles_fitting_feet);
+    RUN_TEST(test_yaw_q24_is_the_rounded_product);
     return UNITY_END();
 }

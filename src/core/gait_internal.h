@@ -202,9 +202,22 @@ static inline int gait_quick_fit(uint32_t s, uint32_t r, uint32_t d, uint32_t ra
  * with its two products inline. */
 void gait_foot_velocity(const int32_t v[2], int32_t w_q24, int32_t x_um, int32_t y_um, int32_t out[2]);
 
+/* mul_q(w, K, 16) with K = K_MDEG_TO_RAD_Q24_Q16 = Kh 2^16 + Kl: w K =
+ * (w Kh) 2^16 + w Kl exactly, and (w Kh) 2^16 is a multiple of 2^16, so the
+ * rounded shift is w Kh + mul_q(w, Kl, 16), modulo 2^32 as mul_q's: the
+ * same bits for every w. On a Cortex-M0 one MULS and the short product
+ * (mul_q_u16) instead of a full one; elsewhere plain mul_q. */
+#define K_MDEG_TO_RAD_HI ((int32_t)(K_MDEG_TO_RAD_Q24_Q16 >> 16))
+#define K_MDEG_TO_RAD_LO ((uint32_t)K_MDEG_TO_RAD_Q24_Q16 & 0xFFFFu)
+
 static inline int32_t yaw_q24(int32_t w_mdeg_s)
 {
+#if XGO_CORE_NARROW_CPU
+    return (int32_t)((uint32_t)w_mdeg_s * (uint32_t)K_MDEG_TO_RAD_HI +
+                     (uint32_t)mul_q_u16(w_mdeg_s, K_MDEG_TO_RAD_LO, 16u));
+#else
     return mul_q(w_mdeg_s, K_MDEG_TO_RAD_Q24_Q16, 16u);
+#endif
 }
 
 /* Half the time (s, Q16) a planted foot with r phase left stays down at the
