@@ -121,6 +121,39 @@ void gait_foot_velocity(const int32_t v[2], int32_t w_q24, int32_t x_um, int32_t
     out[1] = v[1] + mul_w_q24(w_q24, x_um);
 }
 
+#if XGO_CORE_NARROW_CPU
+/* mul_w_q24(x->w_q24, p) with the yaw rate's halves split (x->w_hi, w_lo):
+ * the same sum of three products when |w| < 2^26 and |p| < 2^20. */
+XGO_ALWAYS_INLINE int32_t tick_w_q24(const gait_tick_t *x, int32_t p)
+{
+    if (x->w_hi != INT32_MIN && (uint32_t)p + (1u << 20) < (1u << 21)) {
+        const int32_t ph = p >> 16;
+        const uint32_t pl = (uint32_t)p & 0xFFFFu;
+        return (x->w_hi * p + (int32_t)x->w_lo * ph + (int32_t)((x->w_lo * pl) >> 16) + (1 << 7)) >> 8;
+    }
+    return mul_q(x->w_q24, p, 24u);
+}
+
+void gait_tick_foot_velocity(const gait_tick_t *x, int32_t x_um, int32_t y_um, int32_t out[2])
+{
+    out[0] = x->vel[0] - tick_w_q24(x, y_um);
+    out[1] = x->vel[1] + tick_w_q24(x, x_um);
+}
+
+/* The split of x->w_q24 tick_w_q24 uses (INT32_MIN: beyond its range). */
+static void split_w(gait_tick_t *x)
+{
+    const int32_t w = x->w_q24;
+    x->w_hi = (uint32_t)w + (1u << 26) < (1u << 27) ? w >> 16 : INT32_MIN;
+    x->w_lo = (uint32_t)w & 0xFFFFu;
+}
+#else
+static void split_w(gait_tick_t *x)
+{
+    (void)x;
+}
+#endif
+
 static int32_t clamp32(int32_t v, int32_t lo, int32_t hi)
 {
     return v < lo ? lo : (v > hi ? hi : v);
@@ -243,7 +276,7 @@ static void touchdown_q8(const xgo_gait_t *g, gait_tick_t *x, int leg, int32_t t
         x->tau2_q16 = (uint32_t)mul_q_u16((int32_t)x->tau_q16, x->tau_q16, 17u);
         x->have_tau = 1;
     }
-    gait_foot_velocity(x->vel, x->w_q24, g->stance_um[leg][0], g->stance_um[leg][1], f);
+    gait_tick_foot_velocity(x, g->stance_um[leg][0], g->stance_um[leg][1], f);
     wf[0] = -mul_q(x->w_q24, f[1], 24u);
     wf[1] = mul_q(x->w_q24, f[0], 24u);
     for (c = 0; c < 2; ++c) {
@@ -420,6 +453,7 @@ static void ramp_velocity(xgo_gait_t *g, gait_tick_t *x)
     x->vel[0] = g->v_ramp[0];
     x->vel[1] = g->v_ramp[1];
     x->w_q24 = yaw_q24(g->v_ramp[2]);
+    split_w(x);
     x->resting = x->resting && g->v_ramp[0] == 0 && g->v_ramp[1] == 0 && g->v_ramp[2] == 0;
 }
 
@@ -486,10 +520,10 @@ static uint32_t transient_rate(const xgo_gait_t *g, gait_tick_t *x, uint32_t rat
         if (g->swinging[leg]) {
             continue;
         }
-        gait_foot_velocity(x->vel, x->w_q24, g->pos_q8[leg][0] >> 8, g->pos_q8[leg][1] >> 8, x->vf[leg]);
+        gait_tick_foot_velocity(x, g->pos_q8[leg][0] >> 8, g->pos_q8[leg][1] >> 8, x->vf[leg]);
         remaining = 0u - (g->phase - t->lift[leg]);
         gait_midpoint_of(g, leg, x->vf[leg], half_time_q16(t, remaining), q);
-        gait_foot_velocity(x->vel, x->w_q24, q[0], q[1], fm);
+        gait_tick_foot_velocity(x, q[0], q[1], fm);
         for (c = 0; c < 2; ++c) {
             int32_t off = (g->pos_q8[leg][c] >> 8) - g->stance_um[leg][c];
             int32_t d;
@@ -551,7 +585,7 @@ static void stance_part(const gait_tick_t *x, int32_t pos_q8[2], uint32_t theta,
     if (before) {
         share = 65536u - share;
     }
-    gait_foot_velocity(x->vel, x->w_q24, pos_q8[0] >> 8, pos_q8[1] >> 8, f);
+    gait_tick_foot_velocity(x, pos_q8[0] >> 8, pos_q8[1] >> 8, f);
     for (c = 0; c < 2; ++c) {
         pos_q8[c] -= mul_q(mul_q(f[c], K_UMS_TO_Q8_TICK_Q31, 31u), (int32_t)share, 16u);
     }
@@ -782,8 +816,8 @@ static void swing_step(xgo_gait_t *g, gait_tick_t *x, int leg)
         touchdown_q8(g, x, leg, td);
         land_point(g, leg, wt->follow, td);
     }
-    gait_foot_velocity(x->vel, x->w_q24, g->lift_q8[leg][0] >> 8, g->lift_q8[leg][1] >> 8, f0);
-    gait_foot_velocity(x->vel, x->w_q24, td[0] >> 8, td[1] >> 8, f1);
+    gait_tick_foot_velocity(x, g->lift_q8[leg][0] >> 8, g->lift_q8[leg][1] >> 8, f0);
+    gait_tick_foot_velocity(x, td[0] >> 8, td[1] >> 8, f1);
     for (c = 0; c < 2; ++c) {
         /* end tangents in 1/256 um per unit of psi: -f * T_swing
          * (T_swing < 2^16, move_feet) */

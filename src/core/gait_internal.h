@@ -61,6 +61,10 @@ typedef struct gait_tick_s {
     uint32_t hx, hy;     /* half-stride budget, um */
     int32_t vel[2];      /* produced vx, vy */
     int32_t w_q24;       /* produced yaw rate, rad/s Q24 */
+#if XGO_CORE_NARROW_CPU
+    int32_t w_hi;        /* w_q24 >> 16 and its low 16 bits, for tick_foot_velocity; */
+    uint32_t w_lo;       /* w_hi = INT32_MIN: |w_q24| >= 2^26 (the general product) */
+#endif
     /* the cadence (cadence stage) */
     uint32_t tau_q16;    /* half the stance time at the fitted cadence, s Q16 */
     uint32_t swing_q16;  /* the swing's duration at this tick's rate, s Q16 */
@@ -201,6 +205,19 @@ static inline int gait_quick_fit(uint32_t s, uint32_t r, uint32_t d, uint32_t ra
  * v + w x p, in um/s. w in rad/s Q24. About ten a tick: one copy (gait.c)
  * with its two products inline. */
 void gait_foot_velocity(const int32_t v[2], int32_t w_q24, int32_t x_um, int32_t y_um, int32_t out[2]);
+
+/* gait_foot_velocity at this tick's velocity (x->vel, x->w_q24): the same
+ * result. On a Cortex-M0 the yaw rate's halves are split once a tick
+ * (x->w_hi, x->w_lo: mul_w_q24's three MULS per product then need only the
+ * point's), not in each of the tick's eight calls. */
+#if XGO_CORE_NARROW_CPU
+void gait_tick_foot_velocity(const gait_tick_t *x, int32_t x_um, int32_t y_um, int32_t out[2]);
+#else
+XGO_ALWAYS_INLINE void gait_tick_foot_velocity(const gait_tick_t *x, int32_t x_um, int32_t y_um, int32_t out[2])
+{
+    gait_foot_velocity(x->vel, x->w_q24, x_um, y_um, out);
+}
+#endif
 
 /* mul_q(w, K, 16) with K = K_MDEG_TO_RAD_Q24_Q16 = Kh 2^16 + Kl: w K =
  * (w Kh) 2^16 + w Kl exactly, and (w Kh) 2^16 is a multiple of 2^16, so the
