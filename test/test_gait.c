@@ -815,6 +815,47 @@ static void test_random_commands_without_yaw_keep_vendor_box(void)
     random_commands(777u, 0, 100000);
 }
 
+/* The gait's caches (the speed limit's, the fitted cadence's with its swing
+ * time, the touchdown points kept as landing points, land_is_td) are pure:
+ * a gait that forgets them before every tick publishes the same feet,
+ * contacts and velocity, bit for bit, under random commands (ramps, stops,
+ * gait switches, mark time). */
+static void test_caches_change_no_result(void)
+{
+    xgo_gait_t fresh;
+    xgo_gait_command_t c = command(0, 0, 0, 0, 0);
+    long t = 0;
+    rng_state = 4242u;
+    xgo_gait_init(&g, k_stance);
+    xgo_gait_init(&fresh, k_stance);
+    while (t < 60000) {
+        int hold = rnd_range(1, 300);
+        int i, leg;
+        c.vx_um_s = rnd_speed(250000);
+        c.vy_um_s = rnd_speed(180000);
+        c.vyaw_mdeg_s = rnd_speed(100000);
+        c.type = (uint8_t)(rnd() % 4);
+        c.pace = (uint8_t)(rnd() % 3);
+        c.mark_time_um = rnd() % 6 == 0 ? rnd_range(10000, 35000) : 0;
+        for (i = 0; i < hold; ++i, ++t) {
+            /* what xgo_gait_init leaves in the cache keys: no key matches */
+            fresh.cache_cmd_type = fresh.cache_v_type = 0xFFu;
+            fresh.land_is_td = 0;
+            xgo_gait_tick(&g, &c);
+            xgo_gait_tick(&fresh, &c);
+            for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
+                TEST_ASSERT_EQUAL_INT32(fresh.foot_um[leg].x, g.foot_um[leg].x);
+                TEST_ASSERT_EQUAL_INT32(fresh.foot_um[leg].y, g.foot_um[leg].y);
+                TEST_ASSERT_EQUAL_INT32(fresh.foot_um[leg].z, g.foot_um[leg].z);
+                TEST_ASSERT_EQUAL_UINT8(fresh.contact[leg], g.contact[leg]);
+            }
+            TEST_ASSERT_EQUAL_INT32(fresh.vx_um_s, g.vx_um_s);
+            TEST_ASSERT_EQUAL_INT32(fresh.vy_um_s, g.vy_um_s);
+            TEST_ASSERT_EQUAL_INT32(fresh.vyaw_mdeg_s, g.vyaw_mdeg_s);
+        }
+    }
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -834,6 +875,7 @@ int main(void)
     RUN_TEST(test_swing_feet_leave_and_meet_the_ground_at_its_speed);
     RUN_TEST(test_random_commands_no_jumps);
     RUN_TEST(test_random_commands_without_yaw_keep_vendor_box);
+    RUN_TEST(test_caches_change_no_result);
     printf("gait: worst speed error %.3f %%, yaw-rate error %.3f %%; worst stop %u ticks (%.2f s); "
            "largest foot step %.0f um/tick (trots), %.0f um/tick (walks); largest planted offset x %.0f um, "
            "y %.0f um (no yaw), y %.0f um (with yaw); highest foot %d um; odometry residual %.2f um\n",
