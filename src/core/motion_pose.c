@@ -58,7 +58,7 @@ static int32_t wave(xgo_bam_t phase, int32_t amplitude)
 /* The body pose and the velocity command of 0x30..0x3C in their units,
  * decoded again only after they were written or reset (motion_writes.c
  * clears decoded.valid then): they change a few times a second at most. */
-static void decode_registers(xgo_motion_t *m, const xgo_regs_t *r)
+static void decode_now(xgo_motion_t *m, const xgo_regs_t *r)
 {
     static const uint8_t period_reg[PERIODIC_AXES] = {XGO_REG_PERIOD_ROLL, XGO_REG_PERIOD_PITCH,
                                                       XGO_REG_PERIOD_YAW, XGO_REG_PERIOD_X,
@@ -66,9 +66,6 @@ static void decode_registers(xgo_motion_t *m, const xgo_regs_t *r)
     const xgo_profile_t *p = m->profile;
     int32_t *v = m->decoded.body;
     unsigned axis;
-    if (m->decoded.valid) {
-        return;
-    }
     m->decoded.valid = 1;
     v[0] = xgo_signed_byte_to_value(xgo_regs_get(r, XGO_REG_BODY_ROLL), p->body_mdeg[0].hi);
     v[1] = xgo_signed_byte_to_value(xgo_regs_get(r, XGO_REG_BODY_PITCH), p->body_mdeg[1].hi);
@@ -91,6 +88,15 @@ static void decode_registers(xgo_motion_t *m, const xgo_regs_t *r)
             m->decoded.periodic = (uint8_t)(m->decoded.periodic | (1u << axis));
             v[axis] = (int32_t)periodic_step(b);
         }
+    }
+}
+
+/* decode_now when needed: the test inline, twice a tick, the decoding out
+ * of line. */
+XGO_ALWAYS_INLINE void decode_registers(xgo_motion_t *m, const xgo_regs_t *r)
+{
+    if (!m->decoded.valid) {
+        decode_now(m, r);
     }
 }
 
@@ -162,13 +168,16 @@ static void self_level(xgo_motion_t *m, const xgo_regs_t *r)
     m->stab_mdeg[1] = clamp32(m->stab_mdeg[1], 2 * p->body_mdeg[1].lo, 2 * p->body_mdeg[1].hi);
 }
 
-/* The correction on a pose, whose roll and pitch stay within the ranges. */
-static void level(const xgo_motion_t *m, xgo_body_pose_t *pose)
+/* The correction on two poses (the pose asked and its base), whose roll
+ * and pitch stay within the ranges; the ranges read once. */
+static void level(const xgo_motion_t *m, xgo_body_pose_t *pose, xgo_body_pose_t *base)
 {
-    const xgo_profile_t *p = m->profile;
-    pose->roll_mdeg = clamp32(pose->roll_mdeg + m->stab_mdeg[0], p->body_mdeg[0].lo, p->body_mdeg[0].hi);
-    pose->pitch_mdeg =
-        clamp32(pose->pitch_mdeg + m->stab_mdeg[1], p->body_mdeg[1].lo, p->body_mdeg[1].hi);
+    const xgo_range_t *roll = &m->profile->body_mdeg[0], *pitch = &m->profile->body_mdeg[1];
+    const int32_t sr = m->stab_mdeg[0], sp = m->stab_mdeg[1];
+    pose->roll_mdeg = clamp32(pose->roll_mdeg + sr, roll->lo, roll->hi);
+    pose->pitch_mdeg = clamp32(pose->pitch_mdeg + sp, pitch->lo, pitch->hi);
+    base->roll_mdeg = clamp32(base->roll_mdeg + sr, roll->lo, roll->hi);
+    base->pitch_mdeg = clamp32(base->pitch_mdeg + sp, pitch->lo, pitch->hi);
 }
 
 void xgo_motion_gait_command(xgo_motion_t *m, const xgo_regs_t *r, xgo_gait_command_t *cmd)
@@ -193,8 +202,7 @@ XGO_OWN_FRAME void xgo_motion_asked_pose(xgo_motion_t *m, const xgo_regs_t *r,
 {
     body_pose_from_registers(m, r, pose, base, spread);
     self_level(m, r); /* sees last tick's target, m->pose_target */
-    level(m, pose);
-    level(m, base);
+    level(m, pose, base);
 }
 
 /* mdeg/s x um -> um/s: pi / 180000, Q32 (74961.3) */
