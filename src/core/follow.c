@@ -3,6 +3,7 @@
  */
 #include "follow.h"
 
+#include "compiler.h" /* XGO_ALWAYS_INLINE */
 #include "fixed.h"
 
 #define CHANNELS 6
@@ -97,19 +98,29 @@ static void channel_tick(int32_t *pos, int32_t *vel, int32_t target_q8, int32_t 
     }
 }
 
+/* One channel's tick and its output (xgo_follow_pose's rounding): a channel
+ * resting on its target stays and outputs the target (round_q8 of
+ * target * Q8 is the target), the common case; inline per channel, so each
+ * field and bound is a constant. */
+XGO_ALWAYS_INLINE void follow_channel(int32_t *pos, int32_t *vel, int32_t target, int32_t speed,
+                                      int32_t accel, int32_t *out)
+{
+    if (*pos == target * Q8 && *vel == 0) {
+        *out = target;
+        return;
+    }
+    channel_tick(pos, vel, target * Q8, speed, accel);
+    *out = round_q8(*pos);
+}
+
 void xgo_follow_tick(xgo_follow_t *f, const xgo_body_pose_t *target, xgo_body_pose_t *out)
 {
-    int32_t t[CHANNELS];
-    unsigned c;
-    to_array(target, t);
-    for (c = 0; c < CHANNELS; c++) {
-        if (f->pos_q8[c] == t[c] * Q8 && f->vel_q8[c] == 0) {
-            continue; /* resting on target: the common case */
-        }
-        channel_tick(&f->pos_q8[c], &f->vel_q8[c], t[c] * Q8, c < 3 ? SPEED_T : SPEED_R,
-                     c < 3 ? ACCEL_T : ACCEL_R);
-    }
-    xgo_follow_pose(f, out);
+    follow_channel(&f->pos_q8[0], &f->vel_q8[0], target->x_um, SPEED_T, ACCEL_T, &out->x_um);
+    follow_channel(&f->pos_q8[1], &f->vel_q8[1], target->y_um, SPEED_T, ACCEL_T, &out->y_um);
+    follow_channel(&f->pos_q8[2], &f->vel_q8[2], target->z_um, SPEED_T, ACCEL_T, &out->z_um);
+    follow_channel(&f->pos_q8[3], &f->vel_q8[3], target->roll_mdeg, SPEED_R, ACCEL_R, &out->roll_mdeg);
+    follow_channel(&f->pos_q8[4], &f->vel_q8[4], target->pitch_mdeg, SPEED_R, ACCEL_R, &out->pitch_mdeg);
+    follow_channel(&f->pos_q8[5], &f->vel_q8[5], target->yaw_mdeg, SPEED_R, ACCEL_R, &out->yaw_mdeg);
 }
 
 int xgo_follow_at(const xgo_follow_t *f, const xgo_body_pose_t *pose)
