@@ -135,7 +135,12 @@ void xgo_odometry_update(xgo_odometry_t *o, const xgo_vec3_t feet_um[XGO_LEG_COU
         o->last_dyaw = 0;
         o->extrapolated_ticks++;
     }
-    memcpy(o->prev_um, feet_um, sizeof o->prev_um);
+    {   /* foot by foot, no memcpy call (every walking tick) */
+        unsigned leg;
+        for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
+            o->prev_um[leg] = feet_um[leg];
+        }
+    }
     o->prev_contact = contact;
     o->have_prev = 1;
 }
