@@ -56,7 +56,10 @@ static void fit_motion(const xgo_odometry_t *o, const xgo_vec3_t feet_um[XGO_LEG
             sb[1] += feet_um[leg].y;
         }
     }
-    /* centred coordinates, scaled by n so they stay integers */
+    /* centred coordinates, scaled by n so they stay integers. Two feet (a
+     * trot's planted pair, every walking tick): the second foot's centred
+     * coordinates are the first's negated (2 p1 - (p1 + p2) = p1 - p2), so
+     * its terms equal the first's - taken twice, four wide products less. */
     for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
         if (common & (1u << leg)) {
             const int32_t ax = (int32_t)n * o->prev_um[leg].x - sa[0];
@@ -65,6 +68,11 @@ static void fit_motion(const xgo_odometry_t *o, const xgo_vec3_t feet_um[XGO_LEG
             const int32_t by = (int32_t)n * feet_um[leg].y - sb[1];
             cross += xgo_mul_wide(bx, ay) - xgo_mul_wide(by, ax);
             dot += xgo_mul_wide(bx, ax) + xgo_mul_wide(by, ay);
+            if (n == 2u) {
+                cross *= 2;
+                dot *= 2;
+                break;
+            }
         }
     }
     *dyaw = (cross == 0) ? 0 : xgo_bam_signed(xgo_atan2_64(cross, dot));
