@@ -294,6 +294,51 @@ static void test_a_push_shows_in_the_gyro(void)
     TEST_ASSERT_DOUBLE_WITHIN(0.5, (pitch[75] - pitch[15]) / 1000.0, integral);
 }
 
+#if XGO_WITH_INERTIAL
+static uint32_t lcg_next(uint32_t *s)
+{
+    *s = *s * 1664525u + 1013904223u;
+    return *s;
+}
+
+/* The body's position in the world: the odometry's point plus the body
+ * shift turned by the heading, * 256 / 2^30 rounded - against 64-bit
+ * products computed here, for shifts inside the M0's 32-bit form (the
+ * _narrow build of this suite takes it) and beyond it, every heading. */
+static void test_body_position_is_the_rounded_turn(void)
+{
+    uint32_t seed = 99u;
+    unsigned k;
+    for (k = 0; k < 400000; ++k) {
+        xgo_odometry_t o;
+        xgo_body_pose_t pose;
+        int64_t body[3], want0, want1;
+        xgo_q30_t sc[2];
+        memset(&o, 0, sizeof o);
+        memset(&pose, 0, sizeof pose);
+        o.yaw_sc[0] = (int32_t)(lcg_next(&seed) % 2147483649u) - (1 << 30);
+        o.yaw_sc[1] = (int32_t)(lcg_next(&seed) % 2147483649u) - (1 << 30);
+        o.x_q8 = (int64_t)(int32_t)lcg_next(&seed) * 1000;
+        o.y_q8 = -(int64_t)(int32_t)lcg_next(&seed) * 777;
+        pose.x_um = (int32_t)lcg_next(&seed) >> (k % 32u);
+        pose.y_um = (int32_t)lcg_next(&seed) >> ((k / 32u) % 32u);
+        pose.z_um = 97600;
+        if (k % 4u == 0u) { /* near the 32-bit form's edges */
+            pose.x_um = (int32_t)(lcg_next(&seed) % 3u) - 1 + ((k & 4u) ? (1 << 19) : -(1 << 19));
+        }
+        xgo_inertial_body_position(&o, &pose, body, sc);
+        want0 = o.x_q8 + (((int64_t)o.yaw_sc[1] * pose.x_um - (int64_t)o.yaw_sc[0] * pose.y_um +
+                           (1 << 21)) >> 22);
+        want1 = o.y_q8 + (((int64_t)o.yaw_sc[0] * pose.x_um + (int64_t)o.yaw_sc[1] * pose.y_um +
+                           (1 << 21)) >> 22);
+        if (body[0] != want0 || body[1] != want1) {
+            TEST_FAIL_MESSAGE("body position differs from the 64-bit turn");
+        }
+        TEST_ASSERT_TRUE(body[2] == (int64_t)97600 * 256);
+    }
+}
+#endif
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -306,5 +351,8 @@ int main(void)
     RUN_TEST(test_walking_off_accelerates_forward);
     RUN_TEST(test_turning_shows_in_the_gyro);
     RUN_TEST(test_a_push_shows_in_the_gyro);
+#if XGO_WITH_INERTIAL
+    RUN_TEST(test_body_position_is_the_rounded_turn);
+#endif
     return UNITY_END();
 }

@@ -186,15 +186,33 @@ void xgo_inertial_tick_sc(xgo_inertial_t *s, const int64_t body_q8[3], const xgo
     filter(s->gyro_q8, w, s->gyro);
 }
 
+/* floor((a x - b y + 2^21) / 2^22) for Q30 a, b: one coordinate of a
+ * rotated point, * 256 / 2^30 rounded. On a Cortex-M0, for |x|, |y| < 2^19
+ * (a body shift: always), from the 10-bit pieces of a and b, a = a2 2^20 +
+ * a1 2^10 + a0 (a2 = a >> 20, a1, a0 in 0..1023): with S = a x - b y,
+ * floor(S / 2^20) = (a2 x - b2 y) + floor(((a1 x - b1 y) + floor((a0 x -
+ * b0 y) / 2^10)) / 2^10), every term within int32, and floor((S + 2^21) /
+ * 2^22) = floor((floor(S / 2^20) + 2) / 4): exact, six MULS instead of two
+ * wide products. Elsewhere the wide products. */
+static int64_t turn_q22(xgo_q30_t a, int32_t x, xgo_q30_t b, int32_t y)
+{
+#if XGO_CORE_NARROW_CPU
+    if ((uint32_t)x + (1u << 19) < (1u << 20) && (uint32_t)y + (1u << 19) < (1u << 20)) {
+        int32_t u = (x * (a & 1023) - y * (b & 1023)) >> 10;
+        u = (x * ((a >> 10) & 1023) - y * ((b >> 10) & 1023) + u) >> 10;
+        return (x * (a >> 20) - y * (b >> 20) + u + 2) >> 2;
+    }
+#endif
+    return (xgo_mul_wide(a, x) - xgo_mul_wide(b, y) + (1 << 21)) >> 22;
+}
+
 void xgo_inertial_body_position(const xgo_odometry_t *o, const xgo_body_pose_t *pose,
                                 int64_t body_q8[3], xgo_q30_t heading_sc[2])
 {
     const xgo_q30_t sh = o->yaw_sc[0], ch = o->yaw_sc[1];
-    /* (c x - s y) * 256 / 2^30 */
-    body_q8[0] = o->x_q8 + ((xgo_mul_wide(ch, pose->x_um) - xgo_mul_wide(sh, pose->y_um) +
-                             (1 << 21)) >> 22);
-    body_q8[1] = o->y_q8 + ((xgo_mul_wide(sh, pose->x_um) + xgo_mul_wide(ch, pose->y_um) +
-                             (1 << 21)) >> 22);
+    /* (c x - s y) * 256 / 2^30, (s x + c y) * 256 / 2^30 */
+    body_q8[0] = o->x_q8 + turn_q22(ch, pose->x_um, sh, pose->y_um);
+    body_q8[1] = o->y_q8 + turn_q22(sh, pose->x_um, -ch, pose->y_um);
     body_q8[2] = (int64_t)pose->z_um * 256;
     if (pose->yaw_mdeg == 0) { /* the usual case: the body faces the machine's heading */
         heading_sc[0] = sh;
