@@ -5,17 +5,21 @@
  * command scaling and velocity ramp, independently of the gait code.
  */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "actions.h" /* xgo_action_duration_ticks */
 #include "board_unity.h"
 #include "codec.h"
+#include "odometry.h"
 #include "unity.h"
 #include "xgo/board.h"
 #include "xgo/emulator.h"
 
 static xgo_board_t board;
+
+#define ODOMETRY_DIGEST 0xedb058dau
 
 void setUp(void)
 {
@@ -489,6 +493,51 @@ static void test_board_write_takes_the_register_write_path_with_its_source(void)
     TEST_ASSERT_GREATER_THAN_INT32(50000, world().x_um);
 }
 
+/* The odometry's arithmetic is the same on every core: a random walk of the
+ * feet (two to four planted, small steps and turns, inside and outside the
+ * M0's 32-bit turn, turn_round in odometry.c) gives, step by step, the
+ * digest the 64-bit products give (computed on x86-64; the _narrow build of
+ * this suite runs the M0's forms). */
+static void test_odometry_arithmetic_is_the_same_on_every_core(void)
+{
+    xgo_odometry_t o;
+    xgo_vec3_t feet[XGO_LEG_COUNT];
+    xgo_world_pose_t pose;
+    uint32_t seed = 2024u, h = 2166136261u;
+    unsigned k, leg;
+    xgo_odometry_init(&o);
+    for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
+        feet[leg].x = leg < 2u ? 75000 : -75000;
+        feet[leg].y = (leg == 0u || leg == 3u) ? 53500 : -53500;
+        feet[leg].z = 0;
+    }
+    for (k = 0; k < 200000; ++k) {
+        uint8_t contact;
+        seed = seed * 1664525u + 1013904223u;
+        contact = (uint8_t)((seed >> 24) & 0x0Fu);
+        contact = contact == 0 ? 0x05u : contact;
+        for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
+            seed = seed * 1664525u + 1013904223u;
+            /* steps of up to +-0.5 mm, now and then +-8 mm (a far point) */
+            feet[leg].x += (int32_t)(seed >> 22) - 512 + ((k % 97u) == 0u ? 8000 : 0);
+            feet[leg].y += (int32_t)((seed >> 12) & 1023u) - 512;
+            feet[leg].x = feet[leg].x > 600000 || feet[leg].x < -600000 ? 0 : feet[leg].x;
+            feet[leg].y = feet[leg].y > 600000 || feet[leg].y < -600000 ? 0 : feet[leg].y;
+        }
+        xgo_odometry_update(&o, feet, contact);
+        xgo_odometry_pose(&o, &pose);
+        h = (h ^ (uint32_t)pose.x_um) * 16777619u;
+        h = (h ^ (uint32_t)pose.y_um) * 16777619u;
+        h = (h ^ (uint32_t)pose.yaw_mdeg) * 16777619u;
+    }
+    {
+        char msg[48];
+        snprintf(msg, sizeof msg, "odometry digest %08lx", (unsigned long)h);
+        TEST_MESSAGE(msg);
+    }
+    TEST_ASSERT_EQUAL_HEX32(ODOMETRY_DIGEST, h);
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -510,5 +559,6 @@ int main(void)
     RUN_TEST(test_battery_input_sets_the_charge);
     RUN_TEST(test_a_push_tips_the_imu_and_dies_away);
     RUN_TEST(test_board_write_takes_the_register_write_path_with_its_source);
+    RUN_TEST(test_odometry_arithmetic_is_the_same_on_every_core);
     return UNITY_END();
 }
