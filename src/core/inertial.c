@@ -170,7 +170,10 @@ void xgo_inertial_tick_sc(xgo_inertial_t *s, const int64_t body_q8[3], const xgo
     for (i = 0; i < 3; i++) {
         const int64_t d2 = body_q8[i] - 2 * s->pos_q8[0][i] + s->pos_q8[1][i];
         a_q8[i] = scale_q16(clamp32(d2, D2_LIMIT_Q8), ACCEL_Q16);
-        d[i] = xgo_wrap_mdeg(att_mdeg[i] - s->att_mdeg[i]);
+        d[i] = att_mdeg[i] - s->att_mdeg[i];
+        if (d[i] < -180000 || d[i] >= 180000) { /* else already an angle: no call */
+            d[i] = xgo_wrap_mdeg(d[i]);
+        }
         s->pos_q8[1][i] = s->pos_q8[0][i];
         s->pos_q8[0][i] = body_q8[i];
         s->att_mdeg[i] = att_mdeg[i];
