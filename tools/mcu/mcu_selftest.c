@@ -348,7 +348,7 @@ static void write_reg(uint8_t addr, uint8_t v, uint32_t now_ms)
 }
 
 /* The longest read whose reply fits the transmit buffer (xgo/config.h; the
- * firmware configuration's 128 bytes answer reads of up to 120). */
+ * firmware configuration's 113 bytes answer reads of up to 105). */
 #define READ_MAX                                                                   \
     (XGO_TX_BUFFER_SIZE - XGO_FRAME_OVERHEAD < XGO_FRAME_MAX_DATA                  \
          ? XGO_TX_BUFFER_SIZE - XGO_FRAME_OVERHEAD                                 \

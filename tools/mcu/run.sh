@@ -18,7 +18,7 @@
 # ship with, XGO_FIRMWARE_OPTIONS and XGO_FIRMWARE_BUFFERS in CMakeLists.txt:
 # what an MCU actually runs). Host and MCU are built alike either way, so the
 # RESULT lines compare one configuration on both architectures. (The two
-# configurations' wire digests differ: with the firmware's 128-byte transmit
+# configurations' wire digests differ: with the firmware's 113-byte transmit
 # buffer the self test reads the register file in two requests, and the
 # diagnostic block counts the extra frame.)
 set -euo pipefail
