@@ -7,6 +7,7 @@
 
 #include "compiler.h"
 #include "kinematics.h"
+#include "wide.h" /* XGO_CORE_DIV64_NATIVE: a 64-bit host */
 
 #define SCALE_ONE 8        /* the whole deviation from the standing pose */
 #define STEP_START_UM 8000 /* the descent's first probes */
@@ -14,9 +15,19 @@
 #define JUMP 6u            /* dir: the jump by the mean miss, before the probes */
 #define SHIFT_MAX_UM 30000 /* the search shifts the body at most this far */
 
+/* Equal poses. The tick compares four keys: on a 32-bit core word by word
+ * (an MCU's memcmp is a byte loop, about 70 instructions each on the M0; no
+ * early exit, the usual answer is "equal"), on a 64-bit host the C
+ * library's memcmp (vector compares) is cheaper. */
 static int same_pose(const xgo_body_pose_t *a, const xgo_body_pose_t *b)
 {
+#if XGO_CORE_DIV64_NATIVE
     return memcmp(a, b, sizeof *a) == 0;
+#else
+    return ((uint32_t)(a->x_um ^ b->x_um) | (uint32_t)(a->y_um ^ b->y_um) | (uint32_t)(a->z_um ^ b->z_um) |
+            (uint32_t)(a->roll_mdeg ^ b->roll_mdeg) | (uint32_t)(a->pitch_mdeg ^ b->pitch_mdeg) |
+            (uint32_t)(a->yaw_mdeg ^ b->yaw_mdeg)) == 0u;
+#endif
 }
 
 /* The search sits on the deepest stack path (reach -> leg IK -> branch ->
@@ -282,7 +293,20 @@ static void search_step(xgo_reach_t *s, const xgo_profile_t *p, const xgo_vec3_t
 
 static int same_stroke(const xgo_reach_t *s, const xgo_vec3_t *stroke)
 {
+#if XGO_CORE_DIV64_NATIVE
     return stroke == NULL ? !s->walking : (s->walking && memcmp(s->stroke, stroke, sizeof s->stroke) == 0);
+#else
+    uint32_t diff = 0;
+    unsigned leg;
+    if (stroke == NULL || !s->walking) {
+        return stroke == NULL && !s->walking;
+    }
+    for (leg = 0; leg < XGO_LEG_COUNT; leg++) { /* word by word, as same_pose */
+        diff |= (uint32_t)(s->stroke[leg].x ^ stroke[leg].x) | (uint32_t)(s->stroke[leg].y ^ stroke[leg].y) |
+                (uint32_t)(s->stroke[leg].z ^ stroke[leg].z);
+    }
+    return diff == 0u;
+#endif
 }
 
 int xgo_reach_tick(xgo_reach_t *s, const xgo_profile_t *p, const xgo_body_pose_t *now,
