@@ -245,6 +245,46 @@ static void test_udiv64_cap_is_the_capped_quotient(void)
     TEST_ASSERT_EQUAL_UINT32(4294967295u / 3u, xgo_udiv64_cap(4294967295u, 3u, 0xFFFFFFFFu));
 }
 
+/* The leading-zero counts: every form against a plain count, for every
+ * power of two and its neighbours and random values of every length (the
+ * _narrow build runs the M0's inline search). */
+static unsigned plain_clz(uint32_t v)
+{
+    unsigned n = 32;
+    while (v != 0u) {
+        v >>= 1;
+        --n;
+    }
+    return n;
+}
+
+static void check_clz(uint32_t v)
+{
+    const unsigned n = plain_clz(v);
+    TEST_ASSERT_EQUAL_UINT(n, xgo_clz32(v));
+    if (v != 0u) {
+        TEST_ASSERT_EQUAL_UINT(n, xgo_clz32_nz(v));
+        TEST_ASSERT_EQUAL_UINT(n & ~1u, xgo_clz32_even(v));
+    }
+}
+
+static void test_clz_forms(void)
+{
+    unsigned b, i;
+    check_clz(0u);
+    check_clz(0xFFFFFFFFu);
+    for (b = 0; b < 32u; ++b) {
+        const uint32_t p2 = (uint32_t)1 << b;
+        check_clz(p2);
+        check_clz(p2 - 1u);
+        check_clz(p2 + 1u);
+        check_clz(p2 | (p2 - 1u));
+    }
+    for (i = 0; i < 200000u; ++i) {
+        check_clz((uint32_t)rnd64() >> (i % 32u));
+    }
+}
+
 static void test_isqrt_exact(void)
 {
     uint32_t i;
@@ -664,5 +704,6 @@ int main(void)
     RUN_TEST(test_atan2_64_against_libm);
     RUN_TEST(test_atan2_len30_against_libm);
     RUN_TEST(test_asin_acos_against_libm);
+    RUN_TEST(test_clz_forms); /* last: the others' random draws as before */
     return UNITY_END();
 }

@@ -275,7 +275,7 @@ uint32_t xgo_sqrt64_near(uint64_t x)
     if (hi == 0u) {
         return xgo_isqrt32((uint32_t)x);
     }
-    s = xgo_clz32(hi) & ~1u;
+    s = xgo_clz32_even(hi);
     x = xgo_shl64(x, s); /* [2^62, 2^64) */
     hi = (uint32_t)(x >> 32);
     lo = (uint32_t)x;
@@ -732,7 +732,7 @@ xgo_bam_t xgo_atan2_64(int64_t y, int64_t x)
     }
     /* round(v / 2^k) to 25 bits (the larger may round up to 2^25): k is
      * the bit length, 64 - clz(hi), less 25 */
-    k = 39u - xgo_clz32(hi);
+    k = 39u - xgo_clz32_nz(hi);
     return fold(atan_octant(xgo_round_shr64(big, k), xgo_round_shr64(small, k)), swap, xneg, yneg);
 }
 

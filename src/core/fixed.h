@@ -133,6 +133,57 @@ static inline unsigned xgo_clz32(uint32_t v)
 #endif
 }
 
+/* The hot paths' leading zeros (the square roots' and the wide atan2's
+ * normalisation, the leg IK's cut; 20 a tick). Where the core has a CLZ
+ * instruction the builtin is that instruction. ARMv6-M (Cortex-M0) has none:
+ * the builtin is a libgcc call (__clzsi2, about 18 instructions plus the
+ * call and the registers it clobbers), so there (and in the host's _narrow
+ * build, which tests this path) a binary search inline, four steps of a
+ * shift and a branch. The same values either way. */
+#if defined(__GNUC__) && UINT32_MAX == 0xFFFFFFFFu && defined(__SIZEOF_INT__) && __SIZEOF_INT__ == 4 && \
+    !XGO_CORE_NARROW_CPU
+#define XGO_CLZ_BUILTIN 1
+#else
+#define XGO_CLZ_BUILTIN 0
+#endif
+
+/* clz(v) & ~1u for v != 0: the even shift that brings v to [2^30, 2^32). */
+XGO_ALWAYS_INLINE unsigned xgo_clz32_even(uint32_t v)
+{
+#if XGO_CLZ_BUILTIN
+    return (unsigned)__builtin_clz(v) & ~1u;
+#else
+    unsigned n = 0;
+    if ((v >> 16) == 0u) {
+        n = 16u;
+        v <<= 16;
+    }
+    if ((v >> 24) == 0u) {
+        n += 8u;
+        v <<= 8;
+    }
+    if ((v >> 28) == 0u) {
+        n += 4u;
+        v <<= 4;
+    }
+    if ((v >> 30) == 0u) {
+        n += 2u;
+    }
+    return n;
+#endif
+}
+
+/* clz(v) for v != 0, inline as xgo_clz32_even. */
+XGO_ALWAYS_INLINE unsigned xgo_clz32_nz(uint32_t v)
+{
+#if XGO_CLZ_BUILTIN
+    return (unsigned)__builtin_clz(v);
+#else
+    const unsigned n = xgo_clz32_even(v);
+    return n + 1u - ((v << n) >> 31); /* v << n has a 1 in its top two bits */
+#endif
+}
+
 /* Number of significant bits of v (0 for 0, 64 for 2^63 and up): what to
  * shift by before a product must fit 64 bits. */
 static inline unsigned xgo_bit_length(uint64_t v)
