@@ -432,6 +432,21 @@ static void test_ik_joint_space_grid_whole_workspace(void)
     report("IK max joint error (lite, 20^3 grid)", st.max_angle_err_deg, "deg");
     TEST_ASSERT_TRUE(st.max_angle_err_deg <= IK_BOUND_DEG);
     TEST_ASSERT_TRUE(st.max_fk_err_um <= FK_IK_BOUND_UM);
+
+    /* Links other than the Mini's (every built-in profile has its links): the
+     * IK works out its constants instead of taking the Mini's kept ones. */
+    {
+        xgo_profile_t other = *xgo_profile_mini();
+        other.thigh_um += 1500;
+        other.shank_um -= 2000;
+        other.knee_offset_mdeg = 2000;
+        memset(&st, 0, sizeof st);
+        joint_space_grid(&other, 20, &st);
+        TEST_ASSERT_EQUAL_INT32(0, st.projected);
+        report("IK max joint error (other links, 20^3 grid)", st.max_angle_err_deg, "deg");
+        TEST_ASSERT_TRUE(st.max_angle_err_deg <= IK_BOUND_DEG);
+        TEST_ASSERT_TRUE(st.max_fk_err_um <= FK_IK_BOUND_UM);
+    }
 }
 
 /* ------------------------------------------------------------ projection */

@@ -75,6 +75,12 @@ typedef enum xgo_axis_e { XGO_AXIS_X = 0, XGO_AXIS_Y = 1, XGO_AXIS_Z = 2, XGO_AX
 /* Servo id as the vendor names it: 11..43. */
 #define XGO_SERVO_ID(leg, joint) (10u * ((unsigned)(leg) + 1u) + (unsigned)(joint) + 1u)
 
+/* The Mini's leg links (every built-in profile's: profile.c, sources in
+ * docs/geometry.md); the leg IK keeps its constants of these worked out. */
+#define XGO_MINI_THIGH_UM 59900
+#define XGO_MINI_SHANK_UM 75995
+#define XGO_MINI_KNEE_OFFSET_MDEG 754
+
 /* +1 for the front legs, -1 for the hind legs. */
 int xgo_leg_side_x(xgo_leg_t leg);
 /* +1 for the left legs, -1 for the right legs. */

@@ -421,9 +421,43 @@ XGO_OWN_FRAME static int upper_may_win(const planar_t *pl, int side, const leg_s
     return off <= 0 || square_wide(off) <= *miss2_below;
 }
 
+/* planar_init's constants for the Mini's links (every built-in profile's),
+ * as constant expressions of what planar_init works out: 2 l1 l2 is below
+ * 2^42 and at least 2^41 (checked below), so it is cut by 12 bits; the knee
+ * offset's binary angle as xgo_mdeg_to_bam gives it (a positive angle). */
+#define MINI_L1 ((int64_t)XGO_MINI_THIGH_UM * Q4_ONE)
+#define MINI_L2 ((int64_t)XGO_MINI_SHANK_UM * Q4_ONE)
+#define MINI_TWO_L1L2 (2 * MINI_L1 * MINI_L2)
+#define MINI_D_SHIFT 12
+#define MINI_DN (MINI_TWO_L1L2 >> MINI_D_SHIFT)
+#define MINI_KNEE_OFF                                                                        \
+    ((uint32_t)XGO_MINI_KNEE_OFFSET_MDEG * 11930u +                                          \
+     (uint32_t)(((int64_t)XGO_MINI_KNEE_OFFSET_MDEG * 1995919024 + ((int64_t)1 << 31)) >> 32))
+typedef char xgo_mini_cut_is_12_bits[(MINI_TWO_L1L2 >> 41) == 1 ? 1 : -1];
+typedef char xgo_mini_knee_offset_positive[XGO_MINI_KNEE_OFFSET_MDEG >= 0 ? 1 : -1];
+
 static void planar_init(planar_t *pl, const xgo_profile_t *p)
 {
     pl->p = p;
+    pl->arcs_ready = 0;
+#if XGO_CORE_NARROW_CPU || XGO_CORE_DIV64_NATIVE
+    /* Every call of xgo_legs_ik (a tick): no products, no bit count (M0:
+     * about 180 instructions less). Not on the other 32-bit cores (M3): a
+     * widening multiply and a CLZ make the work a few instructions, and the
+     * kept constants cost flash. */
+    if (p->thigh_um == XGO_MINI_THIGH_UM && p->shank_um == XGO_MINI_SHANK_UM &&
+        p->knee_offset_mdeg == XGO_MINI_KNEE_OFFSET_MDEG) {
+        pl->l1 = (int32_t)MINI_L1;
+        pl->l2 = (int32_t)MINI_L2;
+        pl->knee_off = MINI_KNEE_OFF;
+        pl->sum_sq = MINI_L1 * MINI_L1 + MINI_L2 * MINI_L2;
+        pl->two_l1l2 = MINI_TWO_L1L2;
+        pl->d_shift = MINI_D_SHIFT;
+        pl->dn = (int32_t)MINI_DN;
+        pl->l1_dn = MINI_L1 * MINI_DN;
+        return;
+    }
+#endif
     pl->l1 = p->thigh_um * Q4_ONE;
     pl->l2 = p->shank_um * Q4_ONE;
     pl->knee_off = xgo_mdeg_to_bam(p->knee_offset_mdeg);
@@ -435,7 +469,6 @@ static void planar_init(planar_t *pl, const xgo_profile_t *p)
     }
     pl->dn = xgo_shr64_to32(pl->two_l1l2, pl->d_shift);
     pl->l1_dn = mul_cold(pl->l1, pl->dn);
-    pl->arcs_ready = 0;
 }
 
 static int32_t clamp_joint(const xgo_profile_t *p, unsigned joint, int32_t v)

@@ -13,9 +13,9 @@
  *   thigh 0.0599 m (joint 11 origin), abduction offset 0.030988 m (joint 12
  *   origin), foot at (0.001, 0.075988) m from the knee at x1 = 0, i.e. a
  *   75.995 mm shank line 0.754 degrees past the right angle. */
-#define MINI_THIGH_UM 59900
-#define MINI_SHANK_UM 75995
-#define MINI_KNEE_OFFSET_MDEG 754
+#define MINI_THIGH_UM XGO_MINI_THIGH_UM /* 59900 */
+#define MINI_SHANK_UM XGO_MINI_SHANK_UM /* 75995 */
+#define MINI_KNEE_OFFSET_MDEG XGO_MINI_KNEE_OFFSET_MDEG /* 754 */
 #define MINI_ABAD_OFFSET_UM 30988
 #define MINI_HIP_X_UM 75000
 #define MINI_HIP_Y_UM 22500
