@@ -81,10 +81,18 @@ typedef enum xgo_axis_e { XGO_AXIS_X = 0, XGO_AXIS_Y = 1, XGO_AXIS_Z = 2, XGO_AX
 #define XGO_MINI_SHANK_UM 75995
 #define XGO_MINI_KNEE_OFFSET_MDEG 754
 
-/* +1 for the front legs, -1 for the hind legs. */
-int xgo_leg_side_x(xgo_leg_t leg);
+/* +1 for the front legs, -1 for the hind legs. Inline: the leg IK asks
+ * every leg every tick, and a call cost more than the test. */
+static inline int xgo_leg_side_x(xgo_leg_t leg)
+{
+    return (leg == XGO_LEG_LF || leg == XGO_LEG_RF) ? 1 : -1;
+}
+
 /* +1 for the left legs, -1 for the right legs. */
-int xgo_leg_side_y(xgo_leg_t leg);
+static inline int xgo_leg_side_y(xgo_leg_t leg)
+{
+    return (leg == XGO_LEG_LF || leg == XGO_LEG_LH) ? 1 : -1;
+}
 
 /* An inclusive value range [lo, hi], lo < hi, in the unit of its field. */
 typedef struct xgo_range_s {

@@ -565,9 +565,15 @@ unsigned xgo_legs_ik(const xgo_profile_t *p, const xgo_vec3_t feet_leg_um[XGO_LE
 void xgo_leg_fk(const xgo_profile_t *p, xgo_leg_t leg, const int32_t q_mdeg[XGO_JOINT_COUNT],
                 xgo_vec3_t *foot_um)
 {
+#if XGO_CORE_NARROW_CPU || XGO_CORE_DIV64_NATIVE
+    /* the Mini's knee offset kept (planar_init): one conversion less */
+    const xgo_bam_t knee_off = p->knee_offset_mdeg == XGO_MINI_KNEE_OFFSET_MDEG ? (xgo_bam_t)MINI_KNEE_OFF
+                                                                               : xgo_mdeg_to_bam(p->knee_offset_mdeg);
+#else
+    const xgo_bam_t knee_off = xgo_mdeg_to_bam(p->knee_offset_mdeg);
+#endif
     fk_bam(p, xgo_leg_side_y(leg), xgo_mdeg_to_bam(q_mdeg[XGO_JOINT_ABAD]),
-           xgo_mdeg_to_bam(q_mdeg[XGO_JOINT_KNEE]) + xgo_mdeg_to_bam(p->knee_offset_mdeg),
-           xgo_mdeg_to_bam(q_mdeg[XGO_JOINT_HIP]), foot_um);
+           xgo_mdeg_to_bam(q_mdeg[XGO_JOINT_KNEE]) + knee_off, xgo_mdeg_to_bam(q_mdeg[XGO_JOINT_HIP]), foot_um);
 }
 
 /* ------------------------------------------------------------ body IK */

@@ -1,6 +1,6 @@
 /*
  * profile.c - the Mini, Lite and Mini2 profiles (sources of every number:
- * docs/geometry.md) and the leg numbering helpers.
+ * docs/geometry.md); the leg numbering helpers are inline in xgo/profile.h.
  */
 #include "xgo/profile.h"
 
@@ -139,14 +139,4 @@ const xgo_profile_t *xgo_profile_get(unsigned model)
 #endif
     (void)model;
     return &mini_profile;
-}
-
-int xgo_leg_side_x(xgo_leg_t leg)
-{
-    return (leg == XGO_LEG_LF || leg == XGO_LEG_RF) ? 1 : -1;
-}
-
-int xgo_leg_side_y(xgo_leg_t leg)
-{
-    return (leg == XGO_LEG_LF || leg == XGO_LEG_LH) ? 1 : -1;
 }
