@@ -268,6 +268,30 @@ static void check_clz(uint32_t v)
     }
 }
 
+/* mdeg -> BAM against the 64-bit formula for every |mdeg| up to 70,000
+ * (the _narrow build's short path below 65,536 and its edge) and random
+ * values of any size. */
+static xgo_bam_t mdeg_to_bam_wide(int32_t mdeg)
+{
+    const int64_t frac = ((int64_t)mdeg * 1995919024 + ((int64_t)1 << 31)) >> 32;
+    return (uint32_t)mdeg * 11930u + (uint32_t)(uint64_t)frac;
+}
+
+static void test_mdeg_to_bam_every_short_value(void)
+{
+    int32_t m;
+    unsigned i;
+    for (m = -70000; m <= 70000; ++m) {
+        TEST_ASSERT_EQUAL_UINT32(mdeg_to_bam_wide(m), xgo_mdeg_to_bam(m));
+    }
+    for (i = 0; i < 100000u; ++i) {
+        const int32_t v = (int32_t)(uint32_t)rnd64();
+        TEST_ASSERT_EQUAL_UINT32(mdeg_to_bam_wide(v), xgo_mdeg_to_bam(v));
+    }
+    TEST_ASSERT_EQUAL_UINT32(mdeg_to_bam_wide(INT32_MIN), xgo_mdeg_to_bam(INT32_MIN));
+    TEST_ASSERT_EQUAL_UINT32(mdeg_to_bam_wide(INT32_MAX), xgo_mdeg_to_bam(INT32_MAX));
+}
+
 static void test_clz_forms(void)
 {
     unsigned b, i;
@@ -705,5 +729,6 @@ int main(void)
     RUN_TEST(test_atan2_len30_against_libm);
     RUN_TEST(test_asin_acos_against_libm);
     RUN_TEST(test_clz_forms); /* last: the others' random draws as before */
+    RUN_TEST(test_mdeg_to_bam_every_short_value);
     return UNITY_END();
 }

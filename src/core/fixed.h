@@ -229,8 +229,19 @@ static inline int32_t xgo_bam_signed(xgo_bam_t a)
 static inline xgo_bam_t xgo_mdeg_to_bam(int32_t mdeg)
 {
     const uint32_t whole = (uint32_t)mdeg * 11930u; /* modulo 2^32 */
+    int64_t frac;
+#if XGO_CORE_NARROW_CPU
+    /* Below 65.5 degrees (the body's angles, most joints') the multiplier
+     * in 16-bit halves, 30455 2^16 + 20144: two MULS within int32 and the
+     * floors nested exactly, floor((A 2^16 + B + 2^31) / 2^32) =
+     * floor((A + 2^15 + floor(B / 2^16)) / 2^16), instead of a wide product
+     * (M0: four MULS and carries). The same value. */
+    if ((uint32_t)mdeg + 65535u < 131071u) {
+        return whole + (uint32_t)((mdeg * 30455 + 32768 + ((mdeg * 20144) >> 16)) >> 16);
+    }
+#endif
     /* |product| < 2^62; the multiplier's rounding adds at most 0.25 LSB */
-    const int64_t frac = (xgo_mul_wide(mdeg, 1995919024) + ((int64_t)1 << 31)) >> 32;
+    frac = (xgo_mul_wide(mdeg, 1995919024) + ((int64_t)1 << 31)) >> 32;
     return whole + (uint32_t)(uint64_t)frac;
 }
 
