@@ -318,25 +318,41 @@ static int planar_ik(planar_t *pl, int32_t x, int32_t h, leg_solution_t *s)
 
 /* ------------------------------------------------------------ leg IK / FK */
 
+#if XGO_CORE_NARROW_CPU
+static int32_t dot30(int32_t a, int32_t b, int32_t c, int32_t d);
+#endif
+
 /* Foot position (leg frame, um) of binary joint angles; g includes the knee
- * offset. Products of a length (< 2^31) and a Q30 value: 32 x 32 bits. */
+ * offset. Products of a length (< 2^31) and a Q30 value: 32 x 32 bits. On
+ * the M0 the leg plane's x and h (q4) are dot30's rounded sums (from 15-bit
+ * pieces, no wide product; lengths below 2^21, results far inside its
+ * clamp: the same value as the wide products' sum rounded); elsewhere the
+ * wide products (M3: dot30 was slower there). */
 static void fk_bam(const xgo_profile_t *p, int side_y, xgo_bam_t phi, xgo_bam_t g, xgo_bam_t t2,
                    xgo_vec3_t *foot_um)
 {
     xgo_q30_t s2, c2, s12, c12, sp, cp;
     const int32_t l1 = p->thigh_um, l2 = p->shank_um, d = p->abad_offset_um;
-    int64_t x30, wp34, z34;
+    int64_t wp34, z34;
     int32_t h4;
+#if !XGO_CORE_NARROW_CPU
+    int64_t x30;
+#endif
     xgo_sincos(t2, &s2, &c2);
     xgo_sincos(t2 + g, &s12, &c12);
     xgo_sincos(phi, &sp, &cp);
     /* in the leg plane: x = -L1 sin t2 + L2 cos(t2 + g), h = L1 cos t2 + L2 sin(t2 + g) */
+#if XGO_CORE_NARROW_CPU
+    foot_um->x = dot30(-l1, s2, l2, c12);
+    h4 = dot30(l1 * Q4_ONE, c2, l2 * Q4_ONE, s12); /* q4 */
+#else
     x30 = -mul_cold(l1, s2) + mul_cold(l2, c12);                                  /* um * 2^30 */
     h4 = (int32_t)round_shift(mul_cold(l1, c2) + mul_cold(l2, s12), 30 - Q4_SHIFT); /* q4 */
+    foot_um->x = (int32_t)round_shift(x30, 30);
+#endif
     /* about the abduction axis, in um * 2^34 */
     wp34 = mul_cold(d * Q4_ONE, cp) + mul_cold(h4, sp);
     z34 = -mul_cold(d * Q4_ONE, sp) + mul_cold(h4, cp);
-    foot_um->x = (int32_t)round_shift(x30, 30);
     foot_um->y = (int32_t)(side_y * (round_shift(wp34, 34) - d));
     foot_um->z = (int32_t)round_shift(z34, 34);
 }
