@@ -320,6 +320,29 @@ static int planar_ik(planar_t *pl, int32_t x, int32_t h, leg_solution_t *s)
 
 #if XGO_CORE_NARROW_CPU
 static int32_t dot30(int32_t a, int32_t b, int32_t c, int32_t d);
+
+/* floor((a b + c d + half) / 2^30) from 15-bit pieces (a = ah 2^15 + al,
+ * 0 <= al < 2^15): ab + cd = P 2^30 + M 2^15 + L with P = ah bh + ch dh,
+ * M = ah bl + al bh + ch dl + cl dh and L = al bl + cl dl (< 2^31), each
+ * MULS within int32, the floors nested exactly; half 2^29 (rounded: dot30)
+ * or 0. For |a|, |b|, |c|, |d| <= 2^30 with the result within int32. */
+XGO_ALWAYS_INLINE int32_t dot_pieces(int32_t a, int32_t b, int32_t c, int32_t d, uint32_t half)
+{
+    const int32_t ah = a >> 15, al = a & 0x7FFF, bh = b >> 15, bl = b & 0x7FFF;
+    const int32_t ch = c >> 15, cl = c & 0x7FFF, dh = d >> 15, dl = d & 0x7FFF;
+    const int32_t m1 = ah * bl + al * bh, m2 = ch * dl + cl * dh; /* each within +-2^31 */
+    const uint32_t lo = ((uint32_t)(al * bl) + (uint32_t)(cl * dl) + half) >> 15; /* < 2^17 */
+    return ah * bh + ch * dh + (m1 >> 15) + (m2 >> 15) + (((m1 & 0x7FFF) + (m2 & 0x7FFF) + (int32_t)lo) >> 15);
+}
+
+/* round((a b + c d) / 2^34), ties up, for the FK's turn about the abduction
+ * axis (a, c below 2^22, b, d Q30): with ab + cd = q 2^30 + r (0 <= r <
+ * 2^30), floor((ab + cd + 2^33) / 2^34) = floor((q + 8) / 16). The same
+ * value as the wide products' rounded sum. */
+static int32_t dot34(int32_t a, int32_t b, int32_t c, int32_t d)
+{
+    return (dot_pieces(a, b, c, d, 0u) + 8) >> 4;
+}
 #endif
 
 /* Foot position (leg frame, um) of binary joint angles; g includes the knee
@@ -333,10 +356,9 @@ static void fk_bam(const xgo_profile_t *p, int side_y, xgo_bam_t phi, xgo_bam_t 
 {
     xgo_q30_t s2, c2, s12, c12, sp, cp;
     const int32_t l1 = p->thigh_um, l2 = p->shank_um, d = p->abad_offset_um;
-    int64_t wp34, z34;
     int32_t h4;
 #if !XGO_CORE_NARROW_CPU
-    int64_t x30;
+    int64_t x30, wp34, z34;
 #endif
     xgo_sincos(t2, &s2, &c2);
     xgo_sincos(t2 + g, &s12, &c12);
@@ -351,10 +373,15 @@ static void fk_bam(const xgo_profile_t *p, int side_y, xgo_bam_t phi, xgo_bam_t 
     foot_um->x = (int32_t)round_shift(x30, 30);
 #endif
     /* about the abduction axis, in um * 2^34 */
+#if XGO_CORE_NARROW_CPU
+    foot_um->y = side_y * (dot34(d * Q4_ONE, cp, h4, sp) - d);
+    foot_um->z = dot34(-d * Q4_ONE, sp, h4, cp);
+#else
     wp34 = mul_cold(d * Q4_ONE, cp) + mul_cold(h4, sp);
     z34 = -mul_cold(d * Q4_ONE, sp) + mul_cold(h4, cp);
     foot_um->y = (int32_t)(side_y * (round_shift(wp34, 34) - d));
     foot_um->z = (int32_t)round_shift(z34, 34);
+#endif
 }
 
 /* The abduction angle that puts (wp, z) (um) at h (q4) in the leg plane:
@@ -613,12 +640,7 @@ static int32_t mul30(int32_t a, int32_t b)
 static int32_t dot30(int32_t a, int32_t b, int32_t c, int32_t d)
 {
 #if XGO_CORE_NARROW_CPU
-    const int32_t ah = a >> 15, al = a & 0x7FFF, bh = b >> 15, bl = b & 0x7FFF;
-    const int32_t ch = c >> 15, cl = c & 0x7FFF, dh = d >> 15, dl = d & 0x7FFF;
-    const int32_t m1 = ah * bl + al * bh, m2 = ch * dl + cl * dh; /* each within +-2^31 */
-    const uint32_t lo = ((uint32_t)(al * bl) + (uint32_t)(cl * dl) + (1u << 29)) >> 15; /* < 2^17 */
-    const int32_t v = ah * bh + ch * dh + (m1 >> 15) + (m2 >> 15) +
-                      (((m1 & 0x7FFF) + (m2 & 0x7FFF) + (int32_t)lo) >> 15);
+    const int32_t v = dot_pieces(a, b, c, d, 1u << 29);
 #else
     const int64_t v = round_shift(xgo_mul_wide(a, b) + xgo_mul_wide(c, d), 30);
 #endif
