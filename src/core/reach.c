@@ -137,6 +137,15 @@ static void transform(const xgo_reach_t *s, const xgo_vec3_t *shift, const xgo_b
                       xgo_body_pose_t *c)
 {
     const int32_t k = s->scale;
+    if (k == SCALE_ONE) { /* the usual end of a search: the whole deviation, (v 8) / 8 = v */
+        c->x_um = from->x_um + shift->x;
+        c->y_um = from->y_um + shift->y;
+        c->z_um = from->z_um + shift->z;
+        c->roll_mdeg = from->roll_mdeg;
+        c->pitch_mdeg = from->pitch_mdeg;
+        c->yaw_mdeg = from->yaw_mdeg;
+        return;
+    }
     c->x_um = s->stand.x_um + (from->x_um - s->stand.x_um) * k / SCALE_ONE + shift->x;
     c->y_um = s->stand.y_um + (from->y_um - s->stand.y_um) * k / SCALE_ONE + shift->y;
     c->z_um = s->stand.z_um + (from->z_um - s->stand.z_um) * k / SCALE_ONE + shift->z;
