@@ -337,6 +337,35 @@ static void test_body_position_is_the_rounded_turn(void)
         TEST_ASSERT_TRUE(body[2] == (int64_t)97600 * 256);
     }
 }
+
+/* The motion core hands the IMU model the roll's and the pitch's sin and
+ * cos from the body IK's rotation of a pose without yaw (motion.c,
+ * inertial_tick): those entries must be xgo_sincos's values exactly, for
+ * every angle (0 included: sincos_mdeg's shortcut there). */
+static void test_rotation_without_yaw_holds_the_sines(void)
+{
+    uint32_t seed = 7u;
+    unsigned k;
+    for (k = 0; k < 200000; ++k) {
+        xgo_body_pose_t pose;
+        xgo_q30_t rot[XGO_ROT_COUNT], sr, cr, sp, cp;
+        memset(&pose, 0, sizeof pose);
+        pose.roll_mdeg = (int32_t)(lcg_next(&seed) % 360000u) - 180000;
+        pose.pitch_mdeg = (int32_t)(lcg_next(&seed) % 360000u) - 180000;
+        if (k % 8u == 0u) {
+            pose.roll_mdeg = 0;
+        } else if (k % 8u == 1u) {
+            pose.pitch_mdeg = 0;
+        }
+        xgo_body_rotation(&pose, rot);
+        xgo_sincos(xgo_mdeg_to_bam(pose.roll_mdeg), &sr, &cr);
+        xgo_sincos(xgo_mdeg_to_bam(pose.pitch_mdeg), &sp, &cp);
+        if (-rot[XGO_ROT(1, 2)] != sr || rot[XGO_ROT(1, 1)] != cr || -rot[XGO_ROT(2, 0)] != sp ||
+            rot[XGO_ROT(0, 0)] != cp) {
+            TEST_FAIL_MESSAGE("the rotation's entries are not the sines and cosines");
+        }
+    }
+}
 #endif
 
 int main(void)
@@ -353,6 +382,7 @@ int main(void)
     RUN_TEST(test_a_push_shows_in_the_gyro);
 #if XGO_WITH_INERTIAL
     RUN_TEST(test_body_position_is_the_rounded_turn);
+    RUN_TEST(test_rotation_without_yaw_holds_the_sines);
 #endif
     return UNITY_END();
 }

@@ -69,6 +69,21 @@ void xgo_inertial_tick_sc(xgo_inertial_t *s, const int64_t body_q8[3], const xgo
 void xgo_inertial_body_position(const xgo_odometry_t *o, const xgo_body_pose_t *pose,
                                 int64_t body_q8[3], xgo_q30_t heading_sc[2]);
 
+/* Before a tick: sin and cos (Q30) of a roll (axis 0) or pitch (axis 1) of
+ * mdeg, exactly xgo_sincos(xgo_mdeg_to_bam(mdeg)), known elsewhere (the body
+ * IK's rotation of the same pose): kept for that tick when its attitude
+ * angle on the axis is mdeg and the kept trig is for another angle, so the
+ * tick does not work them out again. */
+static inline void xgo_inertial_known_trig(xgo_inertial_t *s, unsigned axis, int32_t att_mdeg,
+                                           int32_t mdeg, xgo_q30_t sin_q30, xgo_q30_t cos_q30)
+{
+    if (mdeg == att_mdeg && s->trig_mdeg[axis] != mdeg) {
+        s->trig_mdeg[axis] = mdeg;
+        s->trig_q30[axis][0] = sin_q30;
+        s->trig_q30[axis][1] = cos_q30;
+    }
+}
+
 #else /* XGO_WITH_INERTIAL == 0 (xgo/config.h): accelerometer and gyroscope read 0 */
 static inline void xgo_inertial_init(xgo_inertial_t *s)
 {

@@ -634,6 +634,22 @@ static XGO_OWN_FRAME void inertial_tick(xgo_motion_t *m)
     const int32_t att[3] = {m->imu.roll_mdeg, m->imu.pitch_mdeg, m->imu.yaw_mdeg};
     int64_t body_q8[3];
     xgo_q30_t heading_sc[2];
+#if XGO_WITH_INERTIAL
+    /* Without a body yaw the IK's rotation holds the roll's and the pitch's
+     * sin and cos as they are: R = Ry(pitch) Rx(roll) has cos p, -sin p at
+     * (0, 0), (2, 0) and cos r, -sin r at (1, 1), (1, 2) (xgo_body_rotation;
+     * test_inertial checks it). The IMU's angles are the pose's (no shove,
+     * no ground tilt), so a body pitching or rolling (a periodic motion)
+     * spares the IMU model's sincos. */
+    const xgo_body_pose_t *c = &m->ik_cache.pose;
+    if (m->ik_cache.valid && c->yaw_mdeg == 0) {
+        const xgo_q30_t *rot = m->ik_cache.rot_q30;
+        xgo_inertial_known_trig(&m->inertial, 0, att[0], c->roll_mdeg, -rot[XGO_ROT(1, 2)],
+                                rot[XGO_ROT(1, 1)]);
+        xgo_inertial_known_trig(&m->inertial, 1, att[1], c->pitch_mdeg, -rot[XGO_ROT(2, 0)],
+                                rot[XGO_ROT(0, 0)]);
+    }
+#endif
     xgo_inertial_body_position(&m->odom, &m->pose, body_q8, heading_sc);
     xgo_inertial_tick_sc(&m->inertial, body_q8, heading_sc, att);
 }
