@@ -617,13 +617,14 @@ void xgo_motion_feet_body(const xgo_motion_t *m, xgo_vec3_t out[XGO_LEG_COUNT])
 void xgo_motion_publish(const xgo_motion_t *m, xgo_regs_t *r)
 {
     xgo_regs_set_joints(r, m->profile, (const int32_t(*)[XGO_JOINT_COUNT])m->servos.angle_mdeg);
-    xgo_regs_set(r, XGO_REG_MODE, m->mode);
-    xgo_regs_set(r, XGO_REG_BATTERY, xgo_battery_percent(&m->battery));
-    xgo_regs_set(r, XGO_REG_ACTION, m->action_id);
-    xgo_regs_set(r, XGO_REG_PERFORM, m->perform);
+    /* constant addresses: stores, not five calls every tick */
+    xgo_regs_put(r, XGO_REG_MODE, m->mode);
+    xgo_regs_put(r, XGO_REG_BATTERY, xgo_battery_percent(&m->battery));
+    xgo_regs_put(r, XGO_REG_ACTION, m->action_id);
+    xgo_regs_put(r, XGO_REG_PERFORM, m->perform);
     xgo_regs_set_attitude(r, m->imu.roll_mdeg, m->imu.pitch_mdeg, m->imu.yaw_mdeg);
     xgo_regs_set_inertial(r, m->inertial.accel, m->inertial.gyro);
-    xgo_regs_set(r, XGO_REG_TURN_TO, xgo_heading_done(&m->heading));
+    xgo_regs_put(r, XGO_REG_TURN_TO, xgo_heading_done(&m->heading));
     xgo_arm_publish(&m->arm, r);
 }
 

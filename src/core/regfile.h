@@ -18,6 +18,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "compiler.h"         /* XGO_ALWAYS_INLINE */
 #include "xgo/board_state.h" /* xgo_regs_t */
 #include "xgo/regs.h"
 
@@ -44,6 +45,20 @@ xgo_drop_reason_t xgo_regs_read(const xgo_regs_t *r, uint8_t addr, size_t n, uin
  * XGO_REGS_STORED (the diagnostic block is the board's, formed on read). */
 uint8_t xgo_regs_get(const xgo_regs_t *r, uint8_t addr);
 void xgo_regs_set(xgo_regs_t *r, uint8_t addr, uint8_t value);
+
+/* Where a stored address in no gap (board_state.h) sits in mem, as regs.c's
+ * slot() finds it, but a constant expression for a constant address. */
+#define XGO_REGS_SLOT(a)                                                                       \
+    ((unsigned)(a) -                                                                           \
+     ((unsigned)(a) >= XGO_REGS_GAP1_END ? XGO_REGS_GAP1_END - XGO_REGS_GAP1_START : 0u) -     \
+     ((unsigned)(a) >= XGO_REGS_GAP2_END ? XGO_REGS_GAP2_END - XGO_REGS_GAP2_START : 0u) -     \
+     ((unsigned)(a) >= XGO_REGS_GAP3_END ? XGO_REGS_GAP3_END - XGO_REGS_GAP3_START : 0u))
+/* xgo_regs_set for a constant addr: the store itself, no call (the status
+ * bytes the motion core publishes every tick). */
+XGO_ALWAYS_INLINE void xgo_regs_put(xgo_regs_t *r, unsigned addr, uint8_t value)
+{
+    r->mem[XGO_REGS_SLOT(addr)] = value;
+}
 
 /* True (once) if the host wrote addr (< XGO_REGS_STORED: nothing above is
  * writable) since the last call for it. */

@@ -141,6 +141,20 @@ static const uint8_t k_gaps_below[(XGO_REGS_STORED + 15u) / 16u] = {
     GAPS_BELOW_(0u), GAPS_BELOW_(1u), GAPS_BELOW_(2u), GAPS_BELOW_(3u), GAPS_BELOW_(4u),
     GAPS_BELOW_(5u), GAPS_BELOW_(6u), GAPS_BELOW_(7u), GAPS_BELOW_(8u), GAPS_BELOW_(9u),
 };
+/* regfile.h's constant slot (xgo_regs_put) is the table's: at each gap's
+ * end, the address before each gap and the status bytes the tick puts. */
+#define SLOT_AGREES_(a) (XGO_REGS_SLOT(a) == (unsigned)(a) - GAPS_BELOW_((unsigned)(a) / 16u))
+typedef char xgo_regs_const_slot_[SLOT_AGREES_(XGO_REGS_GAP1_END) && SLOT_AGREES_(XGO_REGS_GAP2_END) &&
+                                          SLOT_AGREES_(XGO_REGS_GAP3_END) &&
+                                          SLOT_AGREES_(XGO_REGS_GAP1_START - 1u) &&
+                                          SLOT_AGREES_(XGO_REGS_GAP2_START - 1u) &&
+                                          SLOT_AGREES_(XGO_REGS_GAP3_START - 1u) &&
+                                          SLOT_AGREES_(XGO_REG_MODE) && SLOT_AGREES_(XGO_REG_BATTERY) &&
+                                          SLOT_AGREES_(XGO_REG_PERFORM) && SLOT_AGREES_(XGO_REG_ACTION) &&
+                                          SLOT_AGREES_(XGO_REG_TURN_TO) && SLOT_AGREES_(XGO_REGS_STORED - 1u)
+                                      ? 1
+                                      : -1];
+#undef SLOT_AGREES_
 #undef GAPS_BELOW_
 #endif
 
