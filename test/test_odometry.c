@@ -538,6 +538,89 @@ static void test_odometry_arithmetic_is_the_same_on_every_core(void)
     TEST_ASSERT_EQUAL_HEX32(ODOMETRY_DIGEST, h);
 }
 
+/* Feet in the air need not be measured (odometry.h): an odometry given
+ * only the planted feet (and some others), garbage for the rest, that
+ * measures them when xgo_odometry_needs_all asks (and last tick's through
+ * xgo_odometry_set_prev), keeps the state of one given every foot - over
+ * random contacts (none, one, up to four) and ticks where nothing moves,
+ * only the feet in the air move or a foot is set down. */
+static void test_feet_in_the_air_measured_only_when_needed(void)
+{
+    xgo_odometry_t ref, lazy;
+    xgo_vec3_t feet[XGO_LEG_COUNT], prev[XGO_LEG_COUNT];
+    uint32_t seed = 77u;
+    unsigned k, leg, asked = 0, skipped = 0;
+    xgo_odometry_init(&ref);
+    xgo_odometry_init(&lazy);
+    for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
+        feet[leg].x = leg < 2u ? 75000 : -75000;
+        feet[leg].y = (leg == 0u || leg == 3u) ? 53500 : -53500;
+        feet[leg].z = 0;
+    }
+    memcpy(prev, feet, sizeof prev);
+    for (k = 0; k < 300000; ++k) {
+        xgo_vec3_t given[XGO_LEG_COUNT];
+        uint8_t contact, measured;
+        unsigned kind;
+        seed = seed * 1664525u + 1013904223u;
+        kind = (seed >> 28) & 3u; /* 0: nothing moves, 1: only the air, else all */
+        contact = (uint8_t)((seed >> 20) & 0x0Fu);
+        if ((seed >> 16) & 1u) {
+            contact = (uint8_t)(contact | ref.prev_contact); /* keep feet down more often */
+        }
+        measured = (uint8_t)(contact | ((seed >> 8) & (seed >> 12) & 0x0Fu));
+        for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
+            seed = seed * 1664525u + 1013904223u;
+            if (kind == 0u || (kind == 1u && ((contact >> leg) & 1u) != 0)) {
+                continue;
+            }
+            if ((seed & 7u) != 0u) {
+                feet[leg].x += (int32_t)(seed >> 22) - 512;
+                feet[leg].y += (int32_t)((seed >> 12) & 1023u) - 512;
+            }
+            feet[leg].z = (int32_t)(seed & 255u); /* z never counts */
+        }
+        for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
+            given[leg] = feet[leg];
+            if (((measured >> leg) & 1u) == 0) {
+                seed = seed * 1664525u + 1013904223u;
+                given[leg].x = (int32_t)(seed >> 8); /* not measured: anything */
+                given[leg].y = (seed & 1u) ? prev[leg].y : -(int32_t)(seed >> 9);
+            }
+        }
+        if ((measured != 0x0Fu || xgo_odometry_unmeasured(&lazy) != 0) &&
+            xgo_odometry_needs_all(&lazy, given, contact, measured)) {
+            memcpy(given, feet, sizeof given);
+            measured = 0x0Fu;
+            for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
+                if (((xgo_odometry_unmeasured(&lazy) >> leg) & 1u) != 0) {
+                    xgo_odometry_set_prev(&lazy, leg, &prev[leg]);
+                }
+            }
+            asked++;
+        } else if (measured != 0x0Fu) {
+            skipped++;
+        }
+        xgo_odometry_update(&ref, feet, contact);
+        xgo_odometry_update_measured(&lazy, given, contact, measured);
+        memcpy(prev, feet, sizeof prev);
+        if (ref.x_q8 != lazy.x_q8 || ref.y_q8 != lazy.y_q8 || ref.yaw != lazy.yaw ||
+            ref.last_d_q8[0] != lazy.last_d_q8[0] || ref.last_d_q8[1] != lazy.last_d_q8[1] ||
+            ref.last_dyaw != lazy.last_dyaw || ref.extrapolated_ticks != lazy.extrapolated_ticks ||
+            ref.prev_contact != lazy.prev_contact || ref.have_prev != lazy.have_prev) {
+            TEST_FAIL_MESSAGE("the odometry with feet in the air unmeasured differs");
+        }
+        for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
+            if (((lazy.prev_unmeasured >> leg) & 1u) == 0 &&
+                (ref.prev_um[leg].x != lazy.prev_um[leg].x || ref.prev_um[leg].y != lazy.prev_um[leg].y)) {
+                TEST_FAIL_MESSAGE("a measured foot differs");
+            }
+        }
+    }
+    TEST_ASSERT_GREATER_THAN_UINT(1000u, asked);   /* both paths taken */
+    TEST_ASSERT_GREATER_THAN_UINT(10000u, skipped);
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -560,5 +643,6 @@ int main(void)
     RUN_TEST(test_a_push_tips_the_imu_and_dies_away);
     RUN_TEST(test_board_write_takes_the_register_write_path_with_its_source);
     RUN_TEST(test_odometry_arithmetic_is_the_same_on_every_core);
+    RUN_TEST(test_feet_in_the_air_measured_only_when_needed);
     return UNITY_END();
 }

@@ -234,6 +234,8 @@ typedef struct xgo_odometry_s {
     xgo_vec3_t prev_um[XGO_LEG_COUNT];      /* last tick's feet (machine frame; z unused) */
     uint8_t prev_contact;                   /* bit leg: planted last tick */
     uint8_t have_prev;                      /* prev_* are valid */
+    uint8_t prev_unmeasured;                /* bit leg: prev_um not measured (a foot in
+                                               the air; in what was padding) */
     int32_t last_d_q8[2];                   /* last tick's translation (body frame) */
     int32_t last_dyaw;                      /* last tick's rotation (signed BAM) */
     uint32_t extrapolated_ticks;            /* ticks with < 2 common planted feet */
@@ -316,6 +318,13 @@ typedef struct xgo_motion_s {
     uint8_t stroke_on;        /* stroke applies (walking, or still stopping) */
     xgo_odometry_t odom;      /* world pose from the planted feet (here: without the
                                  option one byte, in what is padding after the flags) */
+#if XGO_WITH_ODOMETRY
+    struct {                  /* the joints and body pose of the feet odom holds
+                                 unmeasured (prev_unmeasured): measured if it needs them */
+        int32_t q_mdeg[XGO_SERVO_COUNT];
+        xgo_body_pose_t pose;
+    } fk_later;
+#endif
     uint32_t clamped_pose_ticks; /* whole-unit ticks whose pose is not the one asked (reach.h) */
     uint32_t reach_clamped_ticks; /* ticks with the body pose or the arm's point out of reach
                                      (diagnostic reach_clamped) */

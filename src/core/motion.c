@@ -168,6 +168,26 @@ static void feet_of_joints(const xgo_motion_t *m, xgo_vec3_t body[XGO_LEG_COUNT]
     }
 }
 
+#if XGO_WITH_ODOMETRY
+/* The feet in the body frame where the joints q put them (FK), for the
+ * legs in mask; the others at the body's origin (not measured: only the
+ * odometry leaves feet unmeasured, measure_feet). */
+static void feet_of_angles(const xgo_motion_t *m, const int32_t q[XGO_SERVO_COUNT], unsigned mask,
+                           xgo_vec3_t body[XGO_LEG_COUNT])
+{
+    unsigned leg;
+    for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
+        if (((mask >> leg) & 1u) != 0) {
+            xgo_vec3_t foot_leg;
+            xgo_leg_fk(m->profile, (xgo_leg_t)leg, &q[XGO_JOINT_COUNT * leg], &foot_leg);
+            xgo_leg_to_body(m->profile, (xgo_leg_t)leg, &foot_leg, &body[leg]);
+        } else {
+            body[leg].x = body[leg].y = body[leg].z = 0;
+        }
+    }
+}
+#endif
+
 /* board_state.h cannot see kinematics.h: the cache's size is checked here. */
 typedef char xgo_motion_rot_cache_check_[sizeof((xgo_motion_t *)0)->ik_cache.rot_q30 ==
                                          XGO_ROT_COUNT * sizeof(xgo_q30_t) ? 1 : -1];
@@ -550,10 +570,50 @@ static int32_t servo_mode_step(const xgo_regs_t *r)
  * from the planted ones, how far the body moved on the floor. Outside the
  * gait and the actions nobody says which feet are down: those within 1 mm
  * of the lowest are. */
+/* The feet of the legs in mask in the machine frame, where the joints put
+ * them now with this tick's pose (FK); the others are not measured. */
+static void measure_machine(const xgo_motion_t *m, unsigned mask, xgo_vec3_t machine[XGO_LEG_COUNT])
+{
+    xgo_vec3_t body[XGO_LEG_COUNT];
+    xgo_q30_t rot[XGO_ROT_COUNT];
+#if XGO_WITH_ODOMETRY
+    feet_of_angles(m, m->servos.angle_mdeg, mask, body);
+#else /* every foot (the contacts are not known) */
+    (void)mask;
+    feet_of_joints(m, body);
+#endif
+    xgo_body_to_machine_rotated(&m->pose, pose_rotation(m, rot), body, machine);
+}
+
+#if XGO_WITH_ODOMETRY
+/* The feet the odometry holds unmeasured, measured now from the joints and
+ * the pose they had then (rare: the odometry's test that nothing moved
+ * needs them). Out of line: its arrays only on this path's stack. */
+static XGO_OWN_FRAME void measure_later_feet(xgo_motion_t *m)
+{
+    const uint8_t later = xgo_odometry_unmeasured(&m->odom);
+    xgo_vec3_t body[XGO_LEG_COUNT], machine[XGO_LEG_COUNT];
+    xgo_q30_t rot[XGO_ROT_COUNT];
+    unsigned leg;
+    if (later == 0) {
+        return;
+    }
+    feet_of_angles(m, m->fk_later.q_mdeg, later, body);
+    xgo_body_rotation(&m->fk_later.pose, rot);
+    xgo_body_to_machine_rotated(&m->fk_later.pose, rot, body, machine);
+    for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
+        if (((later >> leg) & 1u) != 0) {
+            xgo_odometry_set_prev(&m->odom, leg, &machine[leg]);
+        }
+    }
+}
+#endif
+
 static XGO_OWN_FRAME void measure_feet(xgo_motion_t *m, int contact_known)
 {
     xgo_vec3_t machine_fk[XGO_LEG_COUNT];
     const xgo_vec3_t *machine = machine_fk;
+    unsigned measured = 0x0Fu; /* bit leg: machine[leg] measured */
     int32_t low = INT32_MAX;
     unsigned leg;
     /* The joints where this tick's IK put them and every foot reachable:
@@ -572,11 +632,33 @@ static XGO_OWN_FRAME void measure_feet(xgo_motion_t *m, int contact_known)
     if (m->feet_as_solved) {
         machine = m->ik_cache.feet;
     } else {
-        xgo_vec3_t body[XGO_LEG_COUNT];
-        xgo_q30_t rot[XGO_ROT_COUNT];
-        feet_of_joints(m, body);
-        xgo_body_to_machine_rotated(&m->pose, pose_rotation(m, rot), body, machine_fk);
+        /* A joint lagging its target (a swing's start: about one tick in
+         * twelve of a trot) is a foot in the air: with the contacts known
+         * the planted feet are measured, the others only if the odometry
+         * needs them (odometry.h; not while walking), a leg's FK less each. */
+#if XGO_WITH_ODOMETRY
+        if (contact_known) {
+            measured = m->contact & 0x0Fu;
+        }
+#endif
+        measure_machine(m, measured, machine_fk);
     }
+#if XGO_WITH_ODOMETRY
+    if ((measured != 0x0Fu || xgo_odometry_unmeasured(&m->odom) != 0) &&
+        xgo_odometry_needs_all(&m->odom, machine, m->contact, (uint8_t)measured)) {
+        if (measured != 0x0Fu) {
+            measure_machine(m, 0x0Fu, machine_fk);
+            measured = 0x0Fu;
+        }
+        measure_later_feet(m);
+    }
+    if (measured != 0x0Fu) { /* kept for measure_later_feet */
+        for (leg = 0; leg < XGO_SERVO_COUNT; leg++) {
+            m->fk_later.q_mdeg[leg] = m->servos.angle_mdeg[leg];
+        }
+        m->fk_later.pose = m->pose;
+    }
+#endif
     for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
         low = machine[leg].z < low ? machine[leg].z : low;
     }
@@ -588,7 +670,7 @@ static XGO_OWN_FRAME void measure_feet(xgo_motion_t *m, int contact_known)
             }
         }
     }
-    xgo_odometry_update(&m->odom, machine, m->contact);
+    xgo_odometry_update_measured(&m->odom, machine, m->contact, (uint8_t)measured);
 }
 
 /* Body-frame feet for observers, worked out when asked (not every tick: the

@@ -136,8 +136,38 @@ static unsigned popcount4(uint8_t m)
     return (m & 1u) + ((m >> 1) & 1u) + ((m >> 2) & 1u) + ((m >> 3) & 1u);
 }
 
+int xgo_odometry_needs_all(const xgo_odometry_t *o, const xgo_vec3_t feet_um[XGO_LEG_COUNT],
+                           uint8_t contact, uint8_t measured)
+{
+    const uint8_t common = o->have_prev ? (uint8_t)(o->prev_contact & contact & 0x0Fu) : 0u;
+    const uint8_t exact = (uint8_t)(measured & ~o->prev_unmeasured);
+    unsigned leg;
+    if (common != contact) {
+        return 0; /* a foot set down: no "nothing moved", only planted feet are read */
+    }
+    for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
+        if (((exact >> leg) & 1u) != 0 &&
+            (o->prev_um[leg].x != feet_um[leg].x || o->prev_um[leg].y != feet_um[leg].y)) {
+            return 0; /* a foot known at both ends moved: the test fails whatever the others */
+        }
+    }
+    return 1;
+}
+
+void xgo_odometry_set_prev(xgo_odometry_t *o, unsigned leg, const xgo_vec3_t *foot_um)
+{
+    o->prev_um[leg] = *foot_um;
+    o->prev_unmeasured = (uint8_t)(o->prev_unmeasured & ~(1u << leg));
+}
+
 void xgo_odometry_update(xgo_odometry_t *o, const xgo_vec3_t feet_um[XGO_LEG_COUNT],
                          uint8_t contact)
+{
+    xgo_odometry_update_measured(o, feet_um, contact, 0x0Fu);
+}
+
+void xgo_odometry_update_measured(xgo_odometry_t *o, const xgo_vec3_t feet_um[XGO_LEG_COUNT],
+                                  uint8_t contact, uint8_t measured)
 {
     const uint8_t common = o->have_prev ? (uint8_t)(o->prev_contact & contact & 0x0Fu) : 0u;
     const unsigned n = popcount4(common);
@@ -171,6 +201,7 @@ void xgo_odometry_update(xgo_odometry_t *o, const xgo_vec3_t feet_um[XGO_LEG_COU
         }
     }
     o->prev_contact = contact;
+    o->prev_unmeasured = (uint8_t)(~measured & 0x0Fu);
     o->have_prev = 1;
 }
 

@@ -48,11 +48,38 @@ void xgo_odometry_init(xgo_odometry_t *o);
 #if XGO_WITH_ODOMETRY
 void xgo_odometry_update(xgo_odometry_t *o, const xgo_vec3_t feet_um[XGO_LEG_COUNT],
                          uint8_t contact);
+
+/* Feet in the air need not be measured: the fit takes only feet planted at
+ * both ends of the tick, and the others count only in the test that nothing
+ * moved (every foot's x, y as last tick, no foot set down). So a caller may
+ * measure only the feet in `measured` (every planted one among them) and:
+ *   1. ask xgo_odometry_needs_all(o, feet_um, contact, measured); when it
+ *      says 1, measure the other feet too and give those last tick's update
+ *      left unmeasured (xgo_odometry_unmeasured) with xgo_odometry_set_prev;
+ *   2. update with xgo_odometry_update_measured (the unmeasured feet's values
+ *      are kept but never read unless given again by set_prev).
+ * The result is that of xgo_odometry_update with every foot measured. */
+int xgo_odometry_needs_all(const xgo_odometry_t *o, const xgo_vec3_t feet_um[XGO_LEG_COUNT],
+                           uint8_t contact, uint8_t measured);
+static inline uint8_t xgo_odometry_unmeasured(const xgo_odometry_t *o)
+{
+    return o->prev_unmeasured;
+}
+void xgo_odometry_set_prev(xgo_odometry_t *o, unsigned leg, const xgo_vec3_t *foot_um);
+void xgo_odometry_update_measured(xgo_odometry_t *o, const xgo_vec3_t feet_um[XGO_LEG_COUNT],
+                                  uint8_t contact, uint8_t measured);
 #else
 static inline void xgo_odometry_update(xgo_odometry_t *o,
                                        const xgo_vec3_t feet_um[XGO_LEG_COUNT], uint8_t contact)
 {
     (void)o, (void)feet_um, (void)contact;
+}
+
+static inline void xgo_odometry_update_measured(xgo_odometry_t *o,
+                                                const xgo_vec3_t feet_um[XGO_LEG_COUNT],
+                                                uint8_t contact, uint8_t measured)
+{
+    (void)o, (void)feet_um, (void)contact, (void)measured;
 }
 #endif
 
