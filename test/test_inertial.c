@@ -338,6 +338,34 @@ static void test_body_position_is_the_rounded_turn(void)
     }
 }
 
+/* The model's product for large factors (xgo_inertial_mul_q30: 8-bit
+ * pieces of c on a narrow core for |a| < 2^23, the _narrow build of this
+ * suite takes them) is the rounded 64-bit product, at the form's edges and
+ * for 2,000,000 random factors. */
+static void test_large_products_are_the_rounded_wide_product(void)
+{
+    static const int32_t edge_a[] = {0, 1, -1, 4194304, -4194304, 8388607, -8388608, 8388608,
+                                     -8388609, 2147483647, -2147483647 - 1, 1048575, -1048576};
+    static const int32_t edge_c[] = {0, 1, -1, 1073741824, -1073741824, 1073741823, -1073741823,
+                                     16777216, -16777216, 16777215, -16777217, 255, -256};
+    uint32_t seed = 4242u;
+    unsigned i, j, k;
+    for (i = 0; i < sizeof edge_a / sizeof edge_a[0]; i++) {
+        for (j = 0; j < sizeof edge_c / sizeof edge_c[0]; j++) {
+            const int64_t want = ((int64_t)edge_a[i] * edge_c[j] + (1 << 29)) >> 30;
+            TEST_ASSERT_TRUE(xgo_inertial_mul_q30(edge_a[i], edge_c[j]) == (int32_t)want);
+        }
+    }
+    for (k = 0; k < 2000000; ++k) {
+        const int32_t a = (int32_t)lcg_next(&seed) >> (k % 12u);
+        const int32_t c = (int32_t)(lcg_next(&seed) % 2147483649u) - (1 << 30);
+        const int64_t want = ((int64_t)a * c + (1 << 29)) >> 30;
+        if (xgo_inertial_mul_q30(a, c) != (int32_t)want) {
+            TEST_FAIL_MESSAGE("xgo_inertial_mul_q30 differs from the rounded 64-bit product");
+        }
+    }
+}
+
 /* The motion core hands the IMU model the roll's and the pitch's sin and
  * cos from the body IK's rotation of a pose without yaw (motion.c,
  * inertial_tick): those entries must be xgo_sincos's values exactly, for
@@ -383,6 +411,7 @@ int main(void)
 #if XGO_WITH_INERTIAL
     RUN_TEST(test_body_position_is_the_rounded_turn);
     RUN_TEST(test_rotation_without_yaw_holds_the_sines);
+    RUN_TEST(test_large_products_are_the_rounded_wide_product);
 #endif
     return UNITY_END();
 }

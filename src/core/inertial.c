@@ -57,6 +57,29 @@ XGO_ALWAYS_INLINE int32_t mul_q30(int32_t a, xgo_q30_t c) /* inline: 18 calls a 
     return (int32_t)((xgo_mul_wide(a, c) + (1 << 29)) >> 30);
 }
 
+/* mul_q30 for a factor that may be large: the vertical specific force
+ * (1 g is 2^22 in LSB * 256) and what it turns into, four products a tick
+ * beyond mul_q30's 32-bit form. On a narrow core, for |a| < 2^23, from c's
+ * 8-bit pieces, c = c3 2^24 + c2 2^16 + c1 2^8 + c0 (c3 = c >> 24, |c3| <=
+ * 2^6; c2, c1, c0 in 0..255), each product and nested sum within int32
+ * (|a ck| <= 255 (2^23 - 1) < 2^31 - 2^23, each carried floor below 2^23):
+ *   floor(a c / 2^24) = a c3 + floor((a c2 + floor((a c1 + floor(a c0 / 2^8)) / 2^8)) / 2^8)
+ * and floor((a c + 2^29) / 2^30) = floor((floor(a c / 2^24) + 2^5) / 2^6):
+ * exact, four MULS instead of a 64-bit product. Out of line (four calls);
+ * not static, so test_inertial checks it against the 64-bit product. */
+int32_t xgo_inertial_mul_q30(int32_t a, xgo_q30_t c)
+{
+#if XGO_CORE_NARROW_CPU
+    if ((uint32_t)a + (1u << 23) < (1u << 24)) {
+        int32_t t = (a * (c & 255)) >> 8;
+        t = (a * ((c >> 8) & 255) + t) >> 8;
+        t = (a * ((c >> 16) & 255) + t) >> 8;
+        return (a * (c >> 24) + t + 32) >> 6;
+    }
+#endif
+    return mul_q30(a, c);
+}
+
 /* (v k + 2^15) >> 16 for a constant 0 < k < 2^31 and |v| <= 2^20 with
  * |v (k >> 16)| < 2^31 (callers: ACCEL_Q16, GYRO_Q16 with their clamps).
  * Narrow cores: k = kh 2^16 + km 2^8 + kl (km, kl < 2^8), so
@@ -127,12 +150,12 @@ static void specific_force(const int32_t a_q8[3], const xgo_q30_t heading_sc[2],
     hx = mul_q30(a_q8[0], ch) + mul_q30(a_q8[1], sh);
     hy = mul_q30(a_q8[1], ch) - mul_q30(a_q8[0], sh);
     hz = a_q8[2] + XGO_ACCEL_LSB_PER_G * 256;
-    /* Ry(-pitch), then Rx(-roll) */
-    x1 = mul_q30(hx, t->cp) - mul_q30(hz, t->sp);
-    z1 = mul_q30(hx, t->sp) + mul_q30(hz, t->cp);
+    /* Ry(-pitch), then Rx(-roll); hz and z1 hold the 1 g */
+    x1 = mul_q30(hx, t->cp) - xgo_inertial_mul_q30(hz, t->sp);
+    z1 = mul_q30(hx, t->sp) + xgo_inertial_mul_q30(hz, t->cp);
     f[0] = x1;
-    f[1] = mul_q30(hy, t->cr) + mul_q30(z1, t->sr);
-    f[2] = mul_q30(z1, t->cr) - mul_q30(hy, t->sr);
+    f[1] = mul_q30(hy, t->cr) + xgo_inertial_mul_q30(z1, t->sr);
+    f[2] = xgo_inertial_mul_q30(z1, t->cr) - mul_q30(hy, t->sr);
 }
 
 /* Body rates from the Euler rates (mdeg per tick), LSB * 256. */

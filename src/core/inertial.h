@@ -69,6 +69,10 @@ void xgo_inertial_tick_sc(xgo_inertial_t *s, const int64_t body_q8[3], const xgo
 void xgo_inertial_body_position(const xgo_odometry_t *o, const xgo_body_pose_t *pose,
                                 int64_t body_q8[3], xgo_q30_t heading_sc[2]);
 
+/* (a c + 2^29) >> 30 for a Q30 factor c: the model's product for its
+ * large factors (exposed for test_inertial). */
+int32_t xgo_inertial_mul_q30(int32_t a, xgo_q30_t c);
+
 /* Before a tick: sin and cos (Q30) of a roll (axis 0) or pitch (axis 1) of
  * mdeg, exactly xgo_sincos(xgo_mdeg_to_bam(mdeg)), known elsewhere (the body
  * IK's rotation of the same pose): kept for that tick when its attitude
