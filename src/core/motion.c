@@ -71,7 +71,7 @@ static void standing_pose(const xgo_profile_t *p, xgo_body_pose_t *pose)
     pose->z_um = xgo_byte_to_range(&p->body_um[XGO_AXIS_Z], z->initial);
 }
 
-static void measure_feet(xgo_motion_t *m, int contact_known);
+static void measure_feet(xgo_motion_t *m, int contact_known, int at_solved);
 
 static void standing_joints(const xgo_motion_t *m, int32_t q[XGO_SERVO_COUNT])
 {
@@ -102,7 +102,7 @@ void xgo_motion_init(xgo_motion_t *m, const xgo_profile_t *profile, uint8_t batt
     xgo_inertial_init(&m->inertial);
     xgo_arm_init(&m->arm, profile->arm);
     m->contact = 0x0Fu;
-    measure_feet(m, 1);
+    measure_feet(m, 1, -1);
 }
 
 static void action_pose(xgo_motion_t *m, xgo_body_pose_t *pose, xgo_vec3_t feet[XGO_LEG_COUNT])
@@ -609,7 +609,7 @@ static XGO_OWN_FRAME void measure_later_feet(xgo_motion_t *m)
 }
 #endif
 
-static XGO_OWN_FRAME void measure_feet(xgo_motion_t *m, int contact_known)
+static XGO_OWN_FRAME void measure_feet(xgo_motion_t *m, int contact_known, int at_solved)
 {
     xgo_vec3_t machine_fk[XGO_LEG_COUNT];
     const xgo_vec3_t *machine = machine_fk;
@@ -628,7 +628,7 @@ static XGO_OWN_FRAME void measure_feet(xgo_motion_t *m, int contact_known)
         return;
     }
     m->feet_as_solved = (uint8_t)(contact_known && m->ik_cache.valid && m->ik_cache.projected == 0 &&
-                                  joints_as_solved(m));
+                                  (at_solved < 0 ? joints_as_solved(m) : at_solved));
     if (m->feet_as_solved) {
         machine = m->ik_cache.feet;
     } else {
@@ -763,10 +763,10 @@ static void enter_mode(xgo_motion_t *m, uint8_t was)
 /* After the servos moved: the feet measured, the sensors, the battery, the
  * registers published. Out of line: its locals are not on the stack while
  * the tick goes deep (the reach search). */
-static XGO_OWN_FRAME void sense(xgo_motion_t *m, xgo_regs_t *r, int contact_known, int32_t yaw_rate,
-                                int busy, int pose_clamped)
+static XGO_OWN_FRAME void sense(xgo_motion_t *m, xgo_regs_t *r, int contact_known, int at_solved,
+                                int32_t yaw_rate, int busy, int pose_clamped)
 {
-    measure_feet(m, contact_known);
+    measure_feet(m, contact_known, at_solved);
     xgo_imu_tick(&m->imu, m->pose.roll_mdeg, m->pose.pitch_mdeg, m->pose.yaw_mdeg, yaw_rate);
     inertial_tick(m);
     xgo_arm_tick(&m->arm, r, &m->pose, &m->stand);
@@ -787,6 +787,7 @@ void xgo_motion_tick(xgo_motion_t *m, xgo_regs_t *r)
     int32_t step = XGO_JOINT_STEP_MAX_MDEG;
     int32_t yaw_rate = 0;
     int busy = 0;
+    int at_solved = -1; /* the joints are at the IK's angles: 1, 0, or -1 to compare */
 
     const uint8_t was = m->mode;
     int contact_known = 1;
@@ -815,7 +816,10 @@ void xgo_motion_tick(xgo_motion_t *m, xgo_regs_t *r)
         break;
     }
     if (q != NULL) {
-        xgo_servos_follow(&m->servos, q, step);
+        const int at = xgo_servos_follow(&m->servos, q, step);
+        if (q == m->ik_cache.q_mdeg) {
+            at_solved = at; /* the joints are where the IK put them: no comparing them */
+        }
     }
-    sense(m, r, contact_known, yaw_rate, busy, m->clamped_pose_ticks != clamped_before);
+    sense(m, r, contact_known, at_solved, yaw_rate, busy, m->clamped_pose_ticks != clamped_before);
 }

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "wide.h" /* XGO_CORE_NARROW_CPU */
 
 /* joint: 0..2 (servo index % 3), the profile's joint ranges */
 static int32_t clamp_joint(const xgo_servos_t *s, unsigned joint, int32_t mdeg)
@@ -59,15 +60,19 @@ void xgo_servos_tick(xgo_servos_t *s, int32_t max_step_mdeg)
     }
 }
 
-void xgo_servos_follow(xgo_servos_t *s, const int32_t target_mdeg[XGO_SERVO_COUNT], int32_t max_step_mdeg)
+int xgo_servos_follow(xgo_servos_t *s, const int32_t target_mdeg[XGO_SERVO_COUNT], int32_t max_step_mdeg)
 {
     const xgo_range_t *range = s->profile->joint_mdeg;
     unsigned leg, j, i = 0;
+    int at = 1; /* every angle == target_mdeg: cleared on the rare branches only */
     if (max_step_mdeg < 0) {
         max_step_mdeg = 0;
     }
     if (s->unloaded == 0) {
-        /* every joint loaded (walking, actions): no per-joint mask test */
+#if XGO_CORE_NARROW_CPU
+        /* every joint loaded (walking, actions): no per-joint mask test.
+         * Here the flag below costs the loop more than the caller's compare
+         * of the twelve angles (Cortex-M0 -Os): unknown, -1. */
         for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
             for (j = 0; j < XGO_JOINT_COUNT; j++, i++) {
                 const int32_t t = target_mdeg[i] < range[j].lo   ? range[j].lo
@@ -77,7 +82,38 @@ void xgo_servos_follow(xgo_servos_t *s, const int32_t target_mdeg[XGO_SERVO_COUN
                 s->angle_mdeg[i] = step_toward(s->angle_mdeg[i], t, max_step_mdeg);
             }
         }
-        return;
+        (void)at;
+        return -1;
+#else
+        /* every joint loaded (walking, actions): no per-joint mask test. A
+         * limited target is out of range and the angle within it, a step
+         * short of the target leaves the angle elsewhere: either way the
+         * angle differs from target_mdeg[i]; otherwise it is that value. */
+        for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
+            for (j = 0; j < XGO_JOINT_COUNT; j++, i++) {
+                int32_t t = target_mdeg[i], error;
+                if (t < range[j].lo) {
+                    t = range[j].lo;
+                    at = 0;
+                } else if (t > range[j].hi) {
+                    t = range[j].hi;
+                    at = 0;
+                }
+                s->target_mdeg[i] = t;
+                error = t - s->angle_mdeg[i];
+                if (error > max_step_mdeg) {
+                    s->angle_mdeg[i] += max_step_mdeg;
+                    at = 0;
+                } else if (error < -max_step_mdeg) {
+                    s->angle_mdeg[i] -= max_step_mdeg;
+                    at = 0;
+                } else {
+                    s->angle_mdeg[i] = t;
+                }
+            }
+        }
+        return at;
+#endif
     }
     /* one pass instead of two; leg by joint, no i % 3 */
     for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
@@ -89,8 +125,10 @@ void xgo_servos_follow(xgo_servos_t *s, const int32_t target_mdeg[XGO_SERVO_COUN
                 s->target_mdeg[i] = t;
                 s->angle_mdeg[i] = step_toward(s->angle_mdeg[i], t, max_step_mdeg);
             }
+            at = at && s->angle_mdeg[i] == target_mdeg[i];
         }
     }
+    return at;
 }
 
 void xgo_servos_unload(xgo_servos_t *s, uint16_t mask)
