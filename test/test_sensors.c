@@ -126,10 +126,39 @@ static void test_battery_drains_at_the_documented_rates(void)
     TEST_ASSERT_EQUAL_UINT32(0, b.charge_upct); /* empty stays empty */
 }
 
+/* xgo_battery_is_percent(b, p) holds exactly for p == xgo_battery_percent(b)
+ * (beyond full, which never happens, for no p): every byte against charges
+ * at and around each percent's edges, the empty and full ends. */
+static void test_is_percent_is_the_percent_and_nothing_else(void)
+{
+    static const int32_t around[] = {-2, -1, 0, 1, 2, 499999, 500000};
+    xgo_battery_t b;
+    uint32_t pct;
+    unsigned k, byte;
+    for (pct = 0; pct <= 101u; pct++) {
+        for (k = 0; k < sizeof around / sizeof around[0]; k++) {
+            const int64_t c = (int64_t)pct * 1000000 + around[k];
+            if (c < 0) {
+                continue;
+            }
+            b.charge_upct = (uint32_t)c;
+            for (byte = 0; byte < 256u; byte++) {
+                TEST_ASSERT_EQUAL_INT(c <= 100000000 && byte == xgo_battery_percent(&b),
+                                      xgo_battery_is_percent(&b, (uint8_t)byte));
+            }
+        }
+    }
+    b.charge_upct = 0xFFFFFFFFu;
+    for (byte = 0; byte < 256u; byte++) {
+        TEST_ASSERT_FALSE(xgo_battery_is_percent(&b, (uint8_t)byte));
+    }
+}
+
 int main(void)
 {
     UNITY_BEGIN();
     RUN_TEST(test_yaw_integrates_the_rate_exactly_and_wraps);
+    RUN_TEST(test_is_percent_is_the_percent_and_nothing_else);
     RUN_TEST(test_roll_and_pitch_are_body_plus_ground_tilt);
     RUN_TEST(test_a_shove_rings_down_like_the_damped_spring);
     RUN_TEST(test_battery_drains_at_the_documented_rates);

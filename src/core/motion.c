@@ -701,7 +701,9 @@ void xgo_motion_publish(const xgo_motion_t *m, xgo_regs_t *r)
     xgo_regs_set_joints(r, m->profile, (const int32_t(*)[XGO_JOINT_COUNT])m->servos.angle_mdeg);
     /* constant addresses: stores, not five calls every tick */
     xgo_regs_put(r, XGO_REG_MODE, m->mode);
-    xgo_regs_put(r, XGO_REG_BATTERY, xgo_battery_percent(&m->battery));
+    if (!xgo_battery_is_percent(&m->battery, xgo_regs_at(r, XGO_REG_BATTERY))) {
+        xgo_regs_put(r, XGO_REG_BATTERY, xgo_battery_percent(&m->battery));
+    }
     xgo_regs_put(r, XGO_REG_ACTION, m->action_id);
     xgo_regs_put(r, XGO_REG_PERFORM, m->perform);
     xgo_regs_set_attitude(r, m->imu.roll_mdeg, m->imu.pitch_mdeg, m->imu.yaw_mdeg);

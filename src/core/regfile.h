@@ -59,6 +59,11 @@ XGO_ALWAYS_INLINE void xgo_regs_put(xgo_regs_t *r, unsigned addr, uint8_t value)
 {
     r->mem[XGO_REGS_SLOT(addr)] = value;
 }
+/* xgo_regs_get for a constant addr: the load itself. */
+XGO_ALWAYS_INLINE uint8_t xgo_regs_at(const xgo_regs_t *r, unsigned addr)
+{
+    return r->mem[XGO_REGS_SLOT(addr)];
+}
 
 /* True (once) if the host wrote addr (< XGO_REGS_STORED: nothing above is
  * writable) since the last call for it. */

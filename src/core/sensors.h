@@ -40,6 +40,18 @@ void xgo_battery_init(xgo_battery_t *b, uint8_t percent);
 void xgo_battery_tick(xgo_battery_t *b, int walking);
 uint8_t xgo_battery_percent(const xgo_battery_t *b);
 
+/* 1: percent == xgo_battery_percent(b), by three compares: percent <= 100
+ * and the charge c in ((percent - 1) 10^6, percent 10^6] micro-percent
+ * (c + 10^6 is formed only for c <= 10^8: no overflow). 0 otherwise, and
+ * for a charge beyond full (never: xgo_battery_init caps it), so the caller
+ * works the percentage out. The board publishes it every tick and it
+ * changes once a percent: a byte already right is not worked out again. */
+static inline int xgo_battery_is_percent(const xgo_battery_t *b, uint8_t percent)
+{
+    const uint32_t c = b->charge_upct, at = (uint32_t)percent * 1000000u;
+    return percent <= 100u && c <= at && at < c + 1000000u;
+}
+
 void xgo_imu_init(xgo_imu_t *imu);
 void xgo_imu_set_ground_tilt(xgo_imu_t *imu, int32_t roll_mdeg, int32_t pitch_mdeg);
 /* A shove (an emulator input): the body is tipped by roll/pitch (mdeg, each
