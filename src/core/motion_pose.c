@@ -152,7 +152,7 @@ static void body_pose_from_registers(xgo_motion_t *m, const xgo_regs_t *r, xgo_b
 static void self_level(xgo_motion_t *m, const xgo_regs_t *r)
 {
     const xgo_profile_t *p = m->profile;
-    if (xgo_regs_get(r, XGO_REG_IMU_MODE) == 1) {
+    if (xgo_regs_at(r, XGO_REG_IMU_MODE) == 1) { /* constant slots: loads, no calls */
         /* what the IMU would read with the body at the pose asked for last
          * tick (the same once the body follows it): no wind-up while the
          * body is still on its way */
@@ -189,8 +189,8 @@ void xgo_motion_gait_command(xgo_motion_t *m, const xgo_regs_t *r, xgo_gait_comm
     cmd->vy_um_s = m->decoded.velocity[1];
     cmd->vyaw_mdeg_s = m->decoded.velocity[2];
     cmd->mark_time_um = m->decoded.mark_time_um;
-    cmd->type = xgo_regs_get(r, XGO_REG_GAIT_TYPE);
-    cmd->pace = xgo_regs_get(r, XGO_REG_MOVE_MODE);
+    cmd->type = xgo_regs_at(r, XGO_REG_GAIT_TYPE); /* constant slots: loads, no calls */
+    cmd->pace = xgo_regs_at(r, XGO_REG_MOVE_MODE);
 }
 
 /* Feet and pose for a running action (255, the reset, stands for 1 s): the
