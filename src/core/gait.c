@@ -242,11 +242,6 @@ void xgo_gait_init(xgo_gait_t *g, const xgo_vec3_t stance_um[XGO_LEG_COUNT])
     publish(g);
 }
 
-int xgo_gait_is_standing(const xgo_gait_t *g)
-{
-    return g->standing != 0;
-}
-
 /* ------------------------------------------------------------ geometry */
 
 /* Half-stride budget in y for yaw rate w: grows with |w| up to the

@@ -149,7 +149,10 @@ void xgo_gait_init(xgo_gait_t *g, const xgo_vec3_t stance_um[XGO_LEG_COUNT]);
 void xgo_gait_tick(xgo_gait_t *g, const xgo_gait_command_t *cmd);
 
 /* 1 when stopped with all four feet down exactly at the stance points. */
-int xgo_gait_is_standing(const xgo_gait_t *g);
+static inline int xgo_gait_is_standing(const xgo_gait_t *g) /* inline: several times a tick */
+{
+    return g->standing != 0;
+}
 
 /* Nominal cycle period of a gait at a pace in ms (the cadence at low speed;
  * faster commands raise the cadence); out-of-range arguments = defaults. */

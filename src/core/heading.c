@@ -30,16 +30,6 @@ void xgo_heading_cancel(xgo_heading_t *h)
     h->state = XGO_HEADING_IDLE;
 }
 
-int xgo_heading_active(const xgo_heading_t *h)
-{
-    return h->state != XGO_HEADING_IDLE;
-}
-
-uint8_t xgo_heading_done(const xgo_heading_t *h)
-{
-    return h->state == XGO_HEADING_IDLE ? 1u : 0u;
-}
-
 /* The rate that still stops at the target with the profile's deceleration. */
 static int32_t profile_rate(int32_t error_mdeg)
 {

@@ -58,7 +58,10 @@ void xgo_heading_cancel(xgo_heading_t *h);
 
 /* 1 while a turn is under way (the caller then drives the gait with the
  * rate xgo_heading_tick returns and no translation). */
-int xgo_heading_active(const xgo_heading_t *h);
+static inline int xgo_heading_active(const xgo_heading_t *h) /* inline: twice a tick */
+{
+    return h->state != XGO_HEADING_IDLE;
+}
 
 /* One tick: the IMU yaw now and the yaw rate the gait produced last tick
  * (mdeg/s). Returns the yaw rate to command (mdeg/s, counter-clockwise
@@ -66,7 +69,10 @@ int xgo_heading_active(const xgo_heading_t *h);
 int32_t xgo_heading_tick(xgo_heading_t *h, int32_t yaw_mdeg, int32_t produced_mdeg_s);
 
 /* What register 0x3F reads: 1 when no turn is under way, 0 while turning. */
-uint8_t xgo_heading_done(const xgo_heading_t *h);
+static inline uint8_t xgo_heading_done(const xgo_heading_t *h) /* inline: every tick */
+{
+    return h->state == XGO_HEADING_IDLE ? 1u : 0u;
+}
 
 #ifdef __cplusplus
 }

@@ -66,11 +66,6 @@ static void coast(xgo_settle_t *s)
     s->v[2] = slow_down(s->v[2], XGO_SETTLE_YAW_DECEL_MDEG_S2 / (int32_t)XGO_TICK_HZ);
 }
 
-int xgo_settle_active(const xgo_settle_t *s)
-{
-    return s->active != 0;
-}
-
 /* Planted feet that are home (or within XGO_SETTLE_HOME_UM of it) are put
  * there; returns the legs that still have to move. */
 static uint8_t legs_away(xgo_settle_t *s, const xgo_vec3_t stance[XGO_LEG_COUNT])

@@ -62,7 +62,10 @@ void xgo_settle_coast(xgo_settle_t *s, const int32_t v[3]);
 void xgo_settle_velocity(const xgo_settle_t *s, int32_t v[3]);
 
 /* 1 while feet are still on their way (xgo_settle_tick moves them). */
-int xgo_settle_active(const xgo_settle_t *s);
+static inline int xgo_settle_active(const xgo_settle_t *s) /* inline: several times a tick */
+{
+    return s->active != 0;
+}
 
 /* One tick toward the stance: writes the feet and which are on the ground.
  * Returns 1 while still settling; 0 when every foot is home (feet = stance,
