@@ -18,6 +18,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "codec.h"            /* xgo_joints_update_bytes */
 #include "compiler.h"         /* XGO_ALWAYS_INLINE */
 #include "xgo/board_state.h" /* xgo_regs_t */
 #include "xgo/regs.h"
@@ -81,12 +82,29 @@ int xgo_regs_take_any_written(xgo_regs_t *r);
 /* Board-side updates of computed registers. */
 void xgo_regs_set_attitude(xgo_regs_t *r, int32_t roll_mdeg, int32_t pitch_mdeg, int32_t yaw_mdeg);
 /* The servo registers 0x50..0x5B: the joints' angles (p's ranges), each
- * re-encoded from its last byte (cheap while it stays in that byte). */
-void xgo_regs_set_joints(xgo_regs_t *r, const xgo_profile_t *p,
-                         const int32_t q_mdeg[XGO_LEG_COUNT][XGO_JOINT_COUNT]);
+ * re-encoded from its last byte (cheap while it stays in that byte).
+ * Inline, as the next: every tick, the codec called straight away. */
+XGO_ALWAYS_INLINE void xgo_regs_set_joints(xgo_regs_t *r, const xgo_profile_t *p,
+                                           const int32_t q_mdeg[XGO_LEG_COUNT][XGO_JOINT_COUNT])
+{
+    xgo_joints_update_bytes(p, q_mdeg, &r->mem[XGO_REGS_SLOT(XGO_REG_SERVO11)]);
+}
 /* The IMU block's acceleration (16384 LSB = 1 g) and angular rate (16.4 LSB
  * = 1 deg/s), body axes x forward, y left, z up (docs/motion.md). */
-void xgo_regs_set_inertial(xgo_regs_t *r, const int16_t accel[3], const int16_t gyro[3]);
+XGO_ALWAYS_INLINE void xgo_regs_set_inertial(xgo_regs_t *r, const int16_t accel[3], const int16_t gyro[3])
+{
+#if XGO_WITH_INERTIAL
+    unsigned i;
+    for (i = 0; i < 3; i++) { /* six halfwords: less than two memcpy calls, every tick */
+        r->accel[i] = accel[i];
+        r->gyro[i] = gyro[i];
+    }
+#else /* without the model they are 0 (xgo/config.h) */
+    (void)r;
+    (void)accel;
+    (void)gyro;
+#endif
+}
 
 /* The heading of the last turn command written to 0x3F, in degrees. */
 int16_t xgo_regs_turn_to_deg(const xgo_regs_t *r);

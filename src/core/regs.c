@@ -153,7 +153,7 @@ typedef char xgo_regs_const_slot_[SLOT_AGREES_(XGO_REGS_GAP1_END) && SLOT_AGREES
                                           SLOT_AGREES_(XGO_REG_PERFORM) && SLOT_AGREES_(XGO_REG_ACTION) &&
                                           SLOT_AGREES_(XGO_REG_TURN_TO) && SLOT_AGREES_(XGO_REGS_STORED - 1u) &&
                                           SLOT_AGREES_(XGO_REG_IMU_MODE) && SLOT_AGREES_(XGO_REG_GAIT_TYPE) &&
-                                          SLOT_AGREES_(XGO_REG_MOVE_MODE)
+                                          SLOT_AGREES_(XGO_REG_MOVE_MODE) && SLOT_AGREES_(XGO_REG_SERVO11)
                                       ? 1
                                       : -1];
 #undef SLOT_AGREES_
@@ -623,21 +623,6 @@ xgo_drop_reason_t xgo_regs_read(const xgo_regs_t *r, uint8_t addr, size_t n, uin
     return XGO_DROP_NONE;
 }
 
-void xgo_regs_set_inertial(xgo_regs_t *r, const int16_t accel[3], const int16_t gyro[3])
-{
-#if XGO_WITH_INERTIAL
-    unsigned i;
-    for (i = 0; i < 3; i++) { /* six halfwords: less than two memcpy calls, every tick */
-        r->accel[i] = accel[i];
-        r->gyro[i] = gyro[i];
-    }
-#else /* without the model they are 0 (xgo/config.h) */
-    (void)r;
-    (void)accel;
-    (void)gyro;
-#endif
-}
-
 /* One angle of 0x62..0x64: its byte encoded again only when the angle
  * changed (the byte is a function of it, and nothing else writes there: the
  * registers are computed, read-only; xgo_regs_init writes all three).
@@ -656,12 +641,6 @@ void xgo_regs_set_attitude(xgo_regs_t *r, int32_t roll_mdeg, int32_t pitch_mdeg,
     set_angle(r, 0, roll_mdeg);
     set_angle(r, 1, pitch_mdeg);
     set_angle(r, 2, yaw_mdeg);
-}
-
-void xgo_regs_set_joints(xgo_regs_t *r, const xgo_profile_t *p,
-                         const int32_t q_mdeg[XGO_LEG_COUNT][XGO_JOINT_COUNT])
-{
-    xgo_joints_update_bytes(p, q_mdeg, &r->mem[slot(XGO_REG_SERVO11)]);
 }
 
 /* Every counter has its slot in 0xC4..0xFF; a 16th needs a new block. */
