@@ -77,7 +77,12 @@ int xgo_regs_take_written_range(xgo_regs_t *r, uint8_t first, uint8_t last);
 int xgo_regs_was_written_range(const xgo_regs_t *r, uint8_t first, uint8_t last);
 /* True (once) if the host wrote anything since the last call: a reader that
  * takes every flag it looks at may skip looking when nothing was written. */
-int xgo_regs_take_any_written(xgo_regs_t *r);
+XGO_ALWAYS_INLINE int xgo_regs_take_any_written(xgo_regs_t *r) /* inline: every tick */
+{
+    const int was = r->any_written;
+    r->any_written = 0;
+    return was;
+}
 
 /* Board-side updates of computed registers. */
 void xgo_regs_set_attitude(xgo_regs_t *r, int32_t roll_mdeg, int32_t pitch_mdeg, int32_t yaw_mdeg);

@@ -269,13 +269,6 @@ static void mark_written(xgo_regs_t *r, uint8_t addr)
     r->any_written = 1;
 }
 
-int xgo_regs_take_any_written(xgo_regs_t *r)
-{
-    const int was = r->any_written;
-    r->any_written = 0;
-    return was;
-}
-
 int xgo_regs_was_written(const xgo_regs_t *r, uint8_t addr)
 {
     const unsigned s = slot(addr);
