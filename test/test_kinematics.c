@@ -836,6 +836,41 @@ static void test_body_rotation_without_yaw_is_the_general_one(void)
     }
 }
 
+/* xgo_body_rotation_next takes the roll's sine and cosine from the last
+ * rotation when neither pose has a yaw and the roll is the same: whatever
+ * the pair, it must give exactly xgo_body_rotation(pose). */
+static void test_body_rotation_next_is_the_rotation(void)
+{
+    static const int32_t roll[] = {0, 1, -1, 12000, -12000, 90000, 180000, -180000, INT32_MAX, INT32_MIN};
+    const size_t nr = sizeof roll / sizeof roll[0];
+    uint64_t seed = 0x0b0d7e57ULL;
+    long n, shortcut = 0;
+    for (n = 0; n < 200000; ++n) {
+        xgo_body_pose_t last, pose;
+        xgo_q30_t next[XGO_ROT_COUNT], direct[XGO_ROT_COUNT];
+        const unsigned pick = (unsigned)(xgo_test_xorshift64(&seed) % 8u);
+        memset(&last, 0, sizeof last);
+        last.roll_mdeg = n < (long)nr ? roll[n] : (int32_t)(xgo_test_xorshift64(&seed) % 720001u) - 360000;
+        last.pitch_mdeg = (int32_t)(xgo_test_xorshift64(&seed) % 720001u) - 360000;
+        pose = last;
+        pose.pitch_mdeg = (int32_t)(xgo_test_xorshift64(&seed) % 720001u) - 360000;
+        if (pick == 5u) {
+            pose.roll_mdeg += 1; /* another roll */
+        } else if (pick == 6u) {
+            last.yaw_mdeg = (int32_t)(xgo_test_xorshift64(&seed) % 720001u) - 360000; /* last had a yaw */
+        } else if (pick == 7u) {
+            pose.yaw_mdeg = (int32_t)(xgo_test_xorshift64(&seed) % 720001u) - 360000; /* pose has one */
+        } else {
+            ++shortcut;
+        }
+        xgo_body_rotation(&last, next);
+        xgo_body_rotation_next(&last, &pose, next);
+        xgo_body_rotation(&pose, direct);
+        TEST_ASSERT_EQUAL_INT32_ARRAY(direct, next, XGO_ROT_COUNT);
+    }
+    TEST_ASSERT_TRUE(shortcut > 100000);
+}
+
 /* ------------------------------------------------------------ byte codes */
 
 /* The vendor library's encoder, as Python evaluates it in double. */
@@ -954,6 +989,7 @@ int main(void)
     RUN_TEST(test_body_ik_identities);
     RUN_TEST(test_body_ik_differences_beyond_int32);
     RUN_TEST(test_body_rotation_without_yaw_is_the_general_one);
+    RUN_TEST(test_body_rotation_next_is_the_rotation);
     RUN_TEST(test_byte_codes_match_the_vendor_library);
     RUN_TEST(test_twelve_register_blocks);
     return UNITY_END();

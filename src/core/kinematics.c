@@ -660,26 +660,32 @@ static void sincos_mdeg(int32_t mdeg, xgo_q30_t *s, xgo_q30_t *c)
     }
 }
 
+/* R without yaw from the roll's and pitch's sines and cosines: cos yaw = 1
+ * and sin yaw = 0 exactly, so each product of the general formula by them
+ * is the other factor and each sum has one term (mul30 and dot30 both
+ * round exactly: the same entries), 4 products instead of 14. */
+static void rotation_without_yaw(xgo_q30_t sr, xgo_q30_t cr, xgo_q30_t sp, xgo_q30_t cp,
+                                 xgo_q30_t rot[XGO_ROT_COUNT])
+{
+    rot[XGO_ROT(0, 0)] = cp;
+    rot[XGO_ROT(0, 1)] = mul30(sp, sr);
+    rot[XGO_ROT(0, 2)] = mul30(sp, cr);
+    rot[XGO_ROT(1, 0)] = 0;
+    rot[XGO_ROT(1, 1)] = cr;
+    rot[XGO_ROT(1, 2)] = -sr;
+    rot[XGO_ROT(2, 0)] = -sp;
+    rot[XGO_ROT(2, 1)] = mul30(cp, sr);
+    rot[XGO_ROT(2, 2)] = mul30(cp, cr);
+}
+
 void xgo_body_rotation(const xgo_body_pose_t *pose, xgo_q30_t rot[XGO_ROT_COUNT])
 {
     xgo_q30_t sr, cr, sp, cp, sy, cy;
     int32_t cysp, sysp;
     sincos_mdeg(pose->roll_mdeg, &sr, &cr);
     sincos_mdeg(pose->pitch_mdeg, &sp, &cp);
-    if (pose->yaw_mdeg == 0) {
-        /* No body yaw (the usual pose: the gait turns the robot): cos yaw
-         * = 1 and sin yaw = 0 exactly, so each product below by them is the
-         * other factor and each sum has one term (mul30 and dot30 both
-         * round exactly: the same entries), 4 products instead of 14. */
-        rot[XGO_ROT(0, 0)] = cp;
-        rot[XGO_ROT(0, 1)] = mul30(sp, sr);
-        rot[XGO_ROT(0, 2)] = mul30(sp, cr);
-        rot[XGO_ROT(1, 0)] = 0;
-        rot[XGO_ROT(1, 1)] = cr;
-        rot[XGO_ROT(1, 2)] = -sr;
-        rot[XGO_ROT(2, 0)] = -sp;
-        rot[XGO_ROT(2, 1)] = mul30(cp, sr);
-        rot[XGO_ROT(2, 2)] = mul30(cp, cr);
+    if (pose->yaw_mdeg == 0) { /* the usual pose: the gait turns the robot */
+        rotation_without_yaw(sr, cr, sp, cp, rot);
         return;
     }
     sincos_mdeg(pose->yaw_mdeg, &sy, &cy);
@@ -694,6 +700,21 @@ void xgo_body_rotation(const xgo_body_pose_t *pose, xgo_q30_t rot[XGO_ROT_COUNT]
     rot[XGO_ROT(2, 0)] = -sp;
     rot[XGO_ROT(2, 1)] = mul30(cp, sr);
     rot[XGO_ROT(2, 2)] = mul30(cp, cr);
+}
+
+void xgo_body_rotation_next(const xgo_body_pose_t *last, const xgo_body_pose_t *pose,
+                            xgo_q30_t rot[XGO_ROT_COUNT])
+{
+    if (pose->yaw_mdeg == 0 && last->yaw_mdeg == 0 && pose->roll_mdeg == last->roll_mdeg) {
+        /* last's rotation without yaw holds cos roll at (1, 1) and -sin roll
+         * at (1, 2) as they were: only the pitch's sine is new */
+        const xgo_q30_t cr = rot[XGO_ROT(1, 1)], sr = -rot[XGO_ROT(1, 2)];
+        xgo_q30_t sp, cp;
+        sincos_mdeg(pose->pitch_mdeg, &sp, &cp);
+        rotation_without_yaw(sr, cr, sp, cp, rot);
+        return;
+    }
+    xgo_body_rotation(pose, rot);
 }
 
 /* The thigh joint of a leg (leg frame origin) in the body frame: the

@@ -86,6 +86,12 @@ void xgo_leg_fk(const xgo_profile_t *p, xgo_leg_t leg, const int32_t q_mdeg[XGO_
 #define XGO_ROT_COUNT 9
 #define XGO_ROT(row, col) (3 * (row) + (col))
 void xgo_body_rotation(const xgo_body_pose_t *pose, xgo_q30_t rot[XGO_ROT_COUNT]);
+/* The same for pose when rot holds the rotation of last (a pose of the
+ * previous solve): with no yaw in either and the same roll (a trot with a
+ * periodic pitch) the roll's sine and cosine are taken from rot, exactly
+ * as xgo_body_rotation(pose) would compute them. */
+void xgo_body_rotation_next(const xgo_body_pose_t *last, const xgo_body_pose_t *pose,
+                            xgo_q30_t rot[XGO_ROT_COUNT]);
 
 /* Body IK: feet in the machine frame (on the ground or anywhere) and the
  * body pose -> each foot in its leg frame. Coordinates saturate at +-2147 m.

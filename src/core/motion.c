@@ -143,11 +143,15 @@ XGO_OWN_FRAME static void solve_joints(xgo_motion_t *m, const xgo_body_pose_t *p
         !same_feet(m->ik_cache.feet, feet)) {
         xgo_vec3_t feet_leg[XGO_LEG_COUNT];
         unsigned leg;
+        if (m->ik_cache.valid) { /* rot_q30 is the cached pose's: its roll may serve */
+            xgo_body_rotation_next(&m->ik_cache.pose, pose, m->ik_cache.rot_q30);
+        } else {
+            xgo_body_rotation(pose, m->ik_cache.rot_q30);
+        }
         m->ik_cache.pose = *pose;
         for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
             m->ik_cache.feet[leg] = feet[leg]; /* no memcpy call: every walking tick */
         }
-        xgo_body_rotation(pose, m->ik_cache.rot_q30);
         xgo_body_ik_rotated(m->profile, pose, m->ik_cache.rot_q30, feet, feet_leg);
         m->ik_cache.projected = (uint8_t)xgo_legs_ik(m->profile, feet_leg,
                                                      (int32_t(*)[XGO_JOINT_COUNT])m->ik_cache.q_mdeg);
