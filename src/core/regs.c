@@ -133,30 +133,14 @@ typedef char xgo_regs_gaps_end_on_blocks_[XGO_REGS_GAP1_END % 16u == 0u &&
                                                   XGO_REGS_GAP3_END % 16u == 0u
                                               ? 1
                                               : -1];
-#define GAPS_BELOW_(block)                                                                     \
-    (((XGO_REGS_GAP1_END <= 16u * (block)) ? XGO_REGS_GAP1_END - XGO_REGS_GAP1_START : 0u) +   \
-     ((XGO_REGS_GAP2_END <= 16u * (block)) ? XGO_REGS_GAP2_END - XGO_REGS_GAP2_START : 0u) +   \
-     ((XGO_REGS_GAP3_END <= 16u * (block)) ? XGO_REGS_GAP3_END - XGO_REGS_GAP3_START : 0u))
+/* From regfile.h's constant form (one formula for both): at a block's first
+ * address the gaps below are those that end at or before it, and no gap
+ * ends inside a block (above), so they are the whole block's. */
+#define GAPS_BELOW_(block) (16u * (block) - XGO_REGS_SLOT(16u * (block)))
 static const uint8_t k_gaps_below[(XGO_REGS_STORED + 15u) / 16u] = {
     GAPS_BELOW_(0u), GAPS_BELOW_(1u), GAPS_BELOW_(2u), GAPS_BELOW_(3u), GAPS_BELOW_(4u),
     GAPS_BELOW_(5u), GAPS_BELOW_(6u), GAPS_BELOW_(7u), GAPS_BELOW_(8u), GAPS_BELOW_(9u),
 };
-/* regfile.h's constant slot (xgo_regs_put, xgo_regs_at) is the table's: at each gap's
- * end, the address before each gap and the bytes the tick puts or reads. */
-#define SLOT_AGREES_(a) (XGO_REGS_SLOT(a) == (unsigned)(a) - GAPS_BELOW_((unsigned)(a) / 16u))
-typedef char xgo_regs_const_slot_[SLOT_AGREES_(XGO_REGS_GAP1_END) && SLOT_AGREES_(XGO_REGS_GAP2_END) &&
-                                          SLOT_AGREES_(XGO_REGS_GAP3_END) &&
-                                          SLOT_AGREES_(XGO_REGS_GAP1_START - 1u) &&
-                                          SLOT_AGREES_(XGO_REGS_GAP2_START - 1u) &&
-                                          SLOT_AGREES_(XGO_REGS_GAP3_START - 1u) &&
-                                          SLOT_AGREES_(XGO_REG_MODE) && SLOT_AGREES_(XGO_REG_BATTERY) &&
-                                          SLOT_AGREES_(XGO_REG_PERFORM) && SLOT_AGREES_(XGO_REG_ACTION) &&
-                                          SLOT_AGREES_(XGO_REG_TURN_TO) && SLOT_AGREES_(XGO_REGS_STORED - 1u) &&
-                                          SLOT_AGREES_(XGO_REG_IMU_MODE) && SLOT_AGREES_(XGO_REG_GAIT_TYPE) &&
-                                          SLOT_AGREES_(XGO_REG_MOVE_MODE) && SLOT_AGREES_(XGO_REG_SERVO11)
-                                      ? 1
-                                      : -1];
-#undef SLOT_AGREES_
 #undef GAPS_BELOW_
 #endif
 
