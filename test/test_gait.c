@@ -815,6 +815,34 @@ static void test_random_commands_without_yaw_keep_vendor_box(void)
     random_commands(777u, 0, 100000);
 }
 
+/* Issue 9 part 4 while the velocity changes: random commands (ramps, stops,
+ * gait and pace switches, mark time) over several seeds. A swing foot
+ * leaves the ground at nearly the ground's speed (measured 3.3 mm/s) and
+ * meets it within a tick's velocity change of it (50.9 mm/s: the landing
+ * point was fitted to the velocity of a tick or more before). Bounds with
+ * room for rounding, far below the stance speed a cosine swing would show
+ * (250 mm/s at 250 mm/s). */
+static void test_swing_feet_meet_the_ground_near_its_speed_while_it_changes(void)
+{
+    static const uint32_t seeds[] = {12345u, 777u, 2024u, 99u};
+    const double before_liftoff = worst_liftoff_mm_s, before_touchdown = worst_touchdown_mm_s;
+    char msg[112];
+    unsigned i;
+    worst_liftoff_mm_s = 0.0; /* this test's own worst, then the whole run's again */
+    worst_touchdown_mm_s = 0.0;
+    for (i = 0; i < sizeof seeds / sizeof seeds[0]; ++i) {
+        random_commands(seeds[i], (int)(i % 2u == 0u), 50000);
+    }
+    snprintf(msg, sizeof msg, "ground speed under random commands: lift-off %.1f mm/s, touchdown %.1f mm/s",
+             worst_liftoff_mm_s, worst_touchdown_mm_s);
+    TEST_ASSERT_TRUE_MESSAGE(worst_liftoff_mm_s > 0.0 && worst_touchdown_mm_s > 0.0, msg); /* events seen */
+    TEST_ASSERT_TRUE_MESSAGE(worst_liftoff_mm_s <= 15.0, msg);
+    TEST_ASSERT_TRUE_MESSAGE(worst_touchdown_mm_s <= 60.0, msg);
+    TEST_MESSAGE(msg);
+    worst_liftoff_mm_s = worst_liftoff_mm_s > before_liftoff ? worst_liftoff_mm_s : before_liftoff;
+    worst_touchdown_mm_s = worst_touchdown_mm_s > before_touchdown ? worst_touchdown_mm_s : before_touchdown;
+}
+
 /* The gait's caches (the speed limit's, the fitted cadence's with its swing
  * time, the touchdown points kept as landing points, land_is_td) are pure:
  * a gait that forgets them before every tick publishes the same feet,
@@ -875,6 +903,7 @@ int main(void)
     RUN_TEST(test_swing_feet_leave_and_meet_the_ground_at_its_speed);
     RUN_TEST(test_random_commands_no_jumps);
     RUN_TEST(test_random_commands_without_yaw_keep_vendor_box);
+    RUN_TEST(test_swing_feet_meet_the_ground_near_its_speed_while_it_changes);
     RUN_TEST(test_caches_change_no_result);
     printf("gait: worst speed error %.3f %%, yaw-rate error %.3f %%; worst stop %u ticks (%.2f s); "
            "largest foot step %.0f um/tick (trots), %.0f um/tick (walks); largest planted offset x %.0f um, "
