@@ -307,6 +307,18 @@ static void test_clz_forms(void)
     for (i = 0; i < 200000u; ++i) {
         check_clz((uint32_t)rnd64() >> (i % 32u));
     }
+    /* the inline bit length (the leg IK's cut) is xgo_bit_length */
+    TEST_ASSERT_EQUAL_UINT32(0u, xgo_bit_length_inline(0u));
+    for (b = 0; b < 64u; ++b) {
+        const uint64_t p2 = (uint64_t)1 << b;
+        TEST_ASSERT_EQUAL_UINT32(xgo_bit_length(p2), xgo_bit_length_inline(p2));
+        TEST_ASSERT_EQUAL_UINT32(xgo_bit_length(p2 - 1u), xgo_bit_length_inline(p2 - 1u));
+        TEST_ASSERT_EQUAL_UINT32(xgo_bit_length(p2 | (p2 - 1u)), xgo_bit_length_inline(p2 | (p2 - 1u)));
+    }
+    for (i = 0; i < 200000u; ++i) {
+        const uint64_t v = rnd64() >> (i % 64u);
+        TEST_ASSERT_EQUAL_UINT32(xgo_bit_length(v), xgo_bit_length_inline(v));
+    }
 }
 
 static void test_isqrt_exact(void)
@@ -712,6 +724,40 @@ static void test_asin_acos_against_libm(void)
     TEST_ASSERT_TRUE(max_ac <= 32.0);
 }
 
+/* xgo_atan2_64 gives the same bits on every core: the 64-bit host's
+ * rounding and the 32-bit cores' (the left-normalised top word, the _narrow
+ * build) over 4 * 10^6 random pairs of every bit length and sign, the
+ * extremes and the scaled pairs where the larger rounds up to 2^25, folded
+ * into one digest. The golden digest was taken from the single form every
+ * core ran before (the rounding by xgo_round_shr64). */
+#define ATAN2_64_DIGEST 0x5c556f8d2e95209cull
+
+static void test_atan2_64_same_bits_everywhere(void)
+{
+    static const int64_t ext[] = {INT64_MIN, INT64_MIN + 1, -((int64_t)1 << 40), -5, -1, 0,
+                                  1, 5, (int64_t)1 << 40, INT64_MAX - 1, INT64_MAX,
+                                  ((int64_t)1 << 57) - 1, (int64_t)1 << 32, ((int64_t)1 << 32) - 1};
+    uint64_t state = 0x2545F4914F6CDD1Dull, digest = 0;
+    size_t i, j;
+    uint32_t k;
+    for (i = 0; i < sizeof ext / sizeof ext[0]; ++i) {
+        for (j = 0; j < sizeof ext / sizeof ext[0]; ++j) {
+            digest = (digest ^ xgo_atan2_64(ext[i], ext[j])) * 0x100000001B3ull;
+        }
+    }
+    for (k = 0; k < 4000000u; ++k) {
+        const int64_t y = (int64_t)xgo_test_xorshift64(&state) >> (xgo_test_xorshift64(&state) % 63u);
+        int64_t x = (int64_t)xgo_test_xorshift64(&state) >> (xgo_test_xorshift64(&state) % 63u);
+        if ((k & 7u) == 0u) { /* the larger just below a rounding up to 2^25 at its length */
+            const unsigned len = 33u + xgo_test_xorshift64(&state) % 30u;
+            x = (((int64_t)1 << len) - 1 - (int64_t)(xgo_test_xorshift64(&state) % 1000u)) * ((k & 8u) ? -1 : 1);
+        }
+        digest = (digest ^ xgo_atan2_64(y, x)) * 0x100000001B3ull;
+    }
+    printf("xgo_atan2_64 digest 0x%016llx\n", (unsigned long long)digest);
+    TEST_ASSERT_TRUE(digest == ATAN2_64_DIGEST);
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -730,5 +776,6 @@ int main(void)
     RUN_TEST(test_asin_acos_against_libm);
     RUN_TEST(test_clz_forms); /* last: the others' random draws as before */
     RUN_TEST(test_mdeg_to_bam_every_short_value);
+    RUN_TEST(test_atan2_64_same_bits_everywhere);
     return UNITY_END();
 }

@@ -913,6 +913,86 @@ static void check_range_codes(const xgo_range_t *r, double unit, long *mismatch,
     TEST_ASSERT_EQUAL_UINT8(255, xgo_range_to_byte(r, INT32_MAX));
 }
 
+/* The leg and body IK give the bits they always gave: every joint angle,
+ * the projected mask and the body IK's feet of 400,000 random cases
+ * folded into one digest, for the Mini and a profile of other links (the
+ * general constants) with tighter limits. The cases: targets all over the
+ * workspace and far beyond it (projections, both abduction branches, the
+ * axis cylinder), feet put by the FK at joint angles on and next to every
+ * limit (the limit checks' exact comparisons), random poses. The golden
+ * digest was taken before the rewrites it guards (the limit checks, the
+ * cut of the hip's products, the inline paths of a 64-bit host, the body
+ * IK's hoisted constants), on the host and the _narrow build alike. */
+#define IK_DIGEST 0x0f763f12ff0acf0cull
+
+static uint64_t fold_ik(uint64_t digest, uint32_t v)
+{
+    return (digest ^ v) * 0x100000001B3ull;
+}
+
+static void test_ik_same_bits_as_before(void)
+{
+    xgo_profile_t other = *xgo_profile_mini();
+    const xgo_profile_t *profiles[2];
+    uint64_t seed = 0x1c0ffee5ULL, digest = 0;
+    long n;
+    other.thigh_um = 61000;
+    other.shank_um = 70500;
+    other.knee_offset_mdeg = -1200;
+    other.joint_mdeg[XGO_JOINT_ABAD].lo += 4000;
+    other.joint_mdeg[XGO_JOINT_HIP].hi -= 9000;
+    profiles[0] = xgo_profile_mini();
+    profiles[1] = &other;
+    for (n = 0; n < 100000; ++n) {
+        const xgo_profile_t *p = profiles[n & 1];
+        xgo_vec3_t machine[XGO_LEG_COUNT], legs[XGO_LEG_COUNT];
+        int32_t q[XGO_LEG_COUNT][XGO_JOINT_COUNT];
+        xgo_body_pose_t pose;
+        unsigned leg, mask;
+        int j;
+        xgo_body_pose_stand(p, &pose);
+        pose.x_um = (int32_t)(xgo_test_xorshift64(&seed) % 40001u) - 20000;
+        pose.y_um = (int32_t)(xgo_test_xorshift64(&seed) % 40001u) - 20000;
+        pose.z_um += (int32_t)(xgo_test_xorshift64(&seed) % 60001u) - 30000;
+        pose.roll_mdeg = (int32_t)(xgo_test_xorshift64(&seed) % 40001u) - 20000;
+        pose.pitch_mdeg = (int32_t)(xgo_test_xorshift64(&seed) % 40001u) - 20000;
+        pose.yaw_mdeg = (n & 6) == 0 ? (int32_t)(xgo_test_xorshift64(&seed) % 40001u) - 20000 : 0;
+        xgo_stance_feet(p, machine);
+        for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
+            const unsigned kind = (unsigned)(xgo_test_xorshift64(&seed) % 8u);
+            const int32_t span = kind == 7u ? 2000000 : (kind == 6u ? 400000 : 90000);
+            machine[leg].x += (int32_t)(xgo_test_xorshift64(&seed) % (uint32_t)(2 * span + 1)) - span;
+            machine[leg].y += (int32_t)(xgo_test_xorshift64(&seed) % (uint32_t)(2 * span + 1)) - span;
+            machine[leg].z += (int32_t)(xgo_test_xorshift64(&seed) % (uint32_t)(2 * span + 1)) - span;
+        }
+        xgo_body_ik(p, &pose, machine, legs);
+        for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
+            if ((xgo_test_xorshift64(&seed) & 3u) == 0u) { /* a foot the FK puts at joints on or by a limit */
+                int32_t qa[XGO_JOINT_COUNT];
+                for (j = 0; j < XGO_JOINT_COUNT; ++j) {
+                    const xgo_range_t *r = &p->joint_mdeg[j];
+                    const uint64_t pick = xgo_test_xorshift64(&seed) % 6u;
+                    qa[j] = pick < 2u ? r->lo + (int32_t)pick : (pick < 4u ? r->hi - (int32_t)(pick - 2u)
+                                                                           : r->lo + (int32_t)((uint32_t)(r->hi - r->lo) / 2u));
+                }
+                xgo_leg_fk(p, (xgo_leg_t)leg, qa, &legs[leg]);
+            }
+            digest = fold_ik(digest, (uint32_t)legs[leg].x);
+            digest = fold_ik(digest, (uint32_t)legs[leg].y);
+            digest = fold_ik(digest, (uint32_t)legs[leg].z);
+        }
+        mask = xgo_legs_ik(p, legs, q);
+        digest = fold_ik(digest, mask);
+        for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
+            for (j = 0; j < XGO_JOINT_COUNT; ++j) {
+                digest = fold_ik(digest, (uint32_t)q[leg][j]);
+            }
+        }
+    }
+    printf("IK digest 0x%016llx\n", (unsigned long long)digest);
+    TEST_ASSERT_TRUE(digest == IK_DIGEST);
+}
+
 static void test_byte_codes_match_the_vendor_library(void)
 {
     const xgo_profile_t *profiles[2];
@@ -992,5 +1072,6 @@ int main(void)
     RUN_TEST(test_body_rotation_next_is_the_rotation);
     RUN_TEST(test_byte_codes_match_the_vendor_library);
     RUN_TEST(test_twelve_register_blocks);
+    RUN_TEST(test_ik_same_bits_as_before);
     return UNITY_END();
 }

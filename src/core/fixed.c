@@ -733,7 +733,24 @@ xgo_bam_t xgo_atan2_64(int64_t y, int64_t x)
     /* round(v / 2^k) to 25 bits (the larger may round up to 2^25): k is
      * the bit length, 64 - clz(hi), less 25 */
     k = 39u - xgo_clz32_nz(hi);
+#if XGO_CORE_DIV64_NATIVE
     return fold(atan_octant(xgo_round_shr64(big, k), xgo_round_shr64(small, k)), swap, xneg, yneg);
+#else
+    {
+        /* On a 32-bit core the top words, shifted left by clz(hi) = 39 - k
+         * so the larger's is in [2^31, 2^32): each is floor(v / 2^(k - 7)),
+         * whose bits 7 up are floor(v / 2^k) and bit 6 is v's bit k - 1,
+         * the rounding's. Two 32-bit shifts a value instead of a 64-bit
+         * shift by a variable k either side of 32 (xgo_round_shr64). */
+        const unsigned n = 39u - k;
+        uint32_t bt = hi, st = (uint32_t)(small >> 32);
+        if (n != 0u) {
+            bt = (bt << n) | ((uint32_t)big >> (32u - n));
+            st = (st << n) | ((uint32_t)small >> (32u - n));
+        }
+        return fold(atan_octant((bt >> 7) + ((bt >> 6) & 1u), (st >> 7) + ((st >> 6) & 1u)), swap, xneg, yneg);
+    }
+#endif
 }
 
 /* ------------------------------------------------------------ asin / acos */

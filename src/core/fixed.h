@@ -194,6 +194,17 @@ static inline unsigned xgo_bit_length(uint64_t v)
     return 32u - xgo_clz32((uint32_t)v);
 }
 
+/* The same with the inline CLZ forms above (no libgcc call on a
+ * Cortex-M0): for the hot paths. */
+XGO_ALWAYS_INLINE unsigned xgo_bit_length_inline(uint64_t v)
+{
+    const uint32_t hi = (uint32_t)(v >> 32), lo = (uint32_t)v;
+    if (hi != 0u) {
+        return 64u - xgo_clz32_nz(hi);
+    }
+    return lo != 0u ? 32u - xgo_clz32_nz(lo) : 0u;
+}
+
 /* ------------------------------------------------------------ square root */
 
 /* floor(sqrt(x)), exact for every x. */

@@ -30,6 +30,15 @@
 
 /* ------------------------------------------------------------ helpers */
 
+/* Inline on a 64-bit host, where a call costs its saved registers and
+ * argument moves and the stack is no budget; out of line on an MCU (the
+ * static stack bound and flash, docs/mcu.md). */
+#if XGO_CORE_DIV64_NATIVE
+#define HOST_INLINE XGO_ALWAYS_INLINE
+#else
+#define HOST_INLINE static
+#endif
+
 static int64_t round_shift(int64_t v, unsigned n)
 {
     return (v + ((int64_t)1 << (n - 1u))) >> n;
@@ -264,18 +273,41 @@ XGO_ALWAYS_INLINE int joint_in(const planar_t *pl, unsigned joint, xgo_bam_t a, 
 {
     const xgo_range_t *r = &pl->p->joint_mdeg[joint];
     *mdeg = xgo_bam_to_mdeg(a);
+    if (*mdeg > r->lo && *mdeg < r->hi) { /* the usual answer first: on neither limit */
+        return 1;
+    }
     if (*mdeg == r->lo) {
         return xgo_bam_signed(a) >= limit_bam(r->lo);
     }
     if (*mdeg == r->hi) {
         return xgo_bam_signed(a) <= limit_bam(r->hi);
     }
-    return *mdeg > r->lo && *mdeg < r->hi;
+    return 0;
+}
+
+/* The right shift that brings m to 30 bits (its bit length - 30, or 0
+ * when it fits), with the core's inline CLZ: xgo_bit_length's is a libgcc
+ * call on a Cortex-M0 (__clzsi2). Out of line where the CLZ is the binary
+ * search (M0): inline, its registers widened the frame of solve_branch,
+ * which is on the deepest stack path. */
+#if XGO_CLZ_BUILTIN
+XGO_ALWAYS_INLINE unsigned cut_to_30(uint64_t m)
+#else
+XGO_OWN_FRAME static unsigned cut_to_30(uint64_t m)
+#endif
+{
+    const uint32_t hi = (uint32_t)(m >> 32);
+    unsigned bits;
+    if (hi != 0u) { /* always, for the hip's products */
+        return 34u - xgo_clz32_nz(hi); /* 64 - clz - 30 */
+    }
+    bits = xgo_bit_length_inline(m);
+    return bits > 30u ? bits - 30u : 0u;
 }
 
 /* In-plane IK for (x, h) in q4 (|x|, |h| < 2^26). Returns 1 if the target
  * had to be projected. */
-static int planar_ik(planar_t *pl, int32_t x, int32_t h, leg_solution_t *s)
+HOST_INLINE int planar_ik(planar_t *pl, int32_t x, int32_t h, leg_solution_t *s)
 {
     const int64_t r2 = square_wide(x) + square_wide(h);
     const int64_t n = r2 - pl->sum_sq, d = pl->two_l1l2;
@@ -300,9 +332,7 @@ static int planar_ik(planar_t *pl, int32_t x, int32_t h, leg_solution_t *s)
     {
         int64_t a = (int64_t)xgo_umul_wide((uint32_t)pl->l2, cn);
         int64_t b = pl->l1_dn + xgo_mul_wide(pl->l2, nn);
-        uint64_t m = (uint64_t)a | (uint64_t)(b < 0 ? -b : b);
-        unsigned kk = xgo_bit_length(m);
-        const unsigned cut = kk > 30u ? kk - 30u : 0u;
+        const unsigned cut = cut_to_30((uint64_t)a | (uint64_t)(b < 0 ? -b : b));
         const int32_t a30 = xgo_shr64_to32(a, cut), b30 = xgo_shr64_to32(b, cut);
         int64_t im, re;
         complex_mul(h, -x, b30, a30, &re, &im); /* |terms| < 2^57 */
@@ -399,8 +429,8 @@ static xgo_bam_t branch_phi(const planar_t *pl, int32_t wp, int32_t z, int32_t h
 /* One branch of the abduction solution: the foot at h = branch * |h| in the
  * leg plane (branch +1: at or below the thigh joint, -1: above it). All
  * values in q4 are below 2^26, so every product is 32 x 32 bits. */
-static void solve_branch(planar_t *pl, int32_t xq, int32_t wp, int32_t z, int32_t h_abs, int branch,
-                         leg_solution_t *s)
+HOST_INLINE void solve_branch(planar_t *pl, int32_t xq, int32_t wp, int32_t z, int32_t h_abs, int branch,
+                              leg_solution_t *s)
 {
     const xgo_range_t *ar = &pl->p->joint_mdeg[XGO_JOINT_ABAD];
     int32_t h = branch > 0 ? h_abs : -h_abs;
@@ -420,6 +450,19 @@ static void solve_branch(planar_t *pl, int32_t xq, int32_t wp, int32_t z, int32_
         s->q[XGO_JOINT_KNEE] = xgo_bam_to_mdeg(s->g - pl->knee_off);
         s->q[XGO_JOINT_HIP] = xgo_bam_to_mdeg(s->t2);
     }
+}
+
+/* The upper branch (rare: the lower one projected). On a 64-bit host out
+ * of line, so the inline lower one keeps the registers; elsewhere the call
+ * of solve_branch itself (no frame more on the deepest stack path). */
+#if XGO_CORE_DIV64_NATIVE
+#define UPPER_FRAME XGO_OWN_FRAME static
+#else
+#define UPPER_FRAME XGO_ALWAYS_INLINE
+#endif
+UPPER_FRAME void solve_upper(planar_t *pl, int32_t xq, int32_t wp, int32_t z, int32_t h_abs, leg_solution_t *s)
+{
+    solve_branch(pl, xq, wp, z, h_abs, -1, s);
 }
 
 static int64_t dist2_um(const xgo_vec3_t *a, int32_t x, int32_t y, int32_t z)
@@ -519,9 +562,16 @@ static int32_t clamp_joint(const xgo_profile_t *p, unsigned joint, int32_t v)
     return clamp_i32(v, p->joint_mdeg[joint].lo, p->joint_mdeg[joint].hi);
 }
 
+/* |v| > FAR_LIMIT_UM, one unsigned compare (v + FAR_LIMIT_UM modulo 2^32
+ * is within [0, 2 FAR_LIMIT_UM] exactly when v is within the limit). */
+XGO_ALWAYS_INLINE int beyond_far(int32_t v)
+{
+    return (uint32_t)v + (uint32_t)FAR_LIMIT_UM > 2u * (uint32_t)FAR_LIMIT_UM;
+}
+
 /* The leg IK with the profile's constants in pl (shared by the legs of one
  * call of xgo_legs_ik, and the limit arcs with them). */
-static int leg_ik_in(planar_t *pl, xgo_leg_t leg, const xgo_vec3_t *foot_um, int32_t q_mdeg[XGO_JOINT_COUNT])
+HOST_INLINE int leg_ik_in(planar_t *pl, xgo_leg_t leg, const xgo_vec3_t *foot_um, int32_t q_mdeg[XGO_JOINT_COUNT])
 {
     const xgo_profile_t *p = pl->p;
     int32_t x = foot_um->x, y = foot_um->y, z = foot_um->z;
@@ -534,8 +584,7 @@ static int leg_ik_in(planar_t *pl, xgo_leg_t leg, const xgo_vec3_t *foot_um, int
     int inside_axis_cylinder;
 
     /* Far targets: halve all three until within ~1 m (direction kept). */
-    while (x > FAR_LIMIT_UM || x < -FAR_LIMIT_UM || y > FAR_LIMIT_UM || y < -FAR_LIMIT_UM ||
-           z > FAR_LIMIT_UM || z < -FAR_LIMIT_UM) {
+    while (beyond_far(x) | beyond_far(y) | beyond_far(z)) {
         x /= 2;
         y /= 2;
         z /= 2;
@@ -563,7 +612,7 @@ static int leg_ik_in(planar_t *pl, xgo_leg_t leg, const xgo_vec3_t *foot_um, int
     if (below.projected && h_abs > 0) {
         int64_t below2 = -1;
         if (upper_may_win(pl, side, &below, wp, z, h_abs, x, y, &below2)) {
-            solve_branch(pl, x * Q4_ONE, wp, z, h_abs, -1, &above);
+            solve_upper(pl, x * Q4_ONE, wp, z, h_abs, &above);
             if (!above.projected) {
                 sol = &above;
             } else {
@@ -717,14 +766,19 @@ void xgo_body_rotation_next(const xgo_body_pose_t *last, const xgo_body_pose_t *
     xgo_body_rotation(pose, rot);
 }
 
-/* The thigh joint of a leg (leg frame origin) in the body frame: the
- * signs of xgo_leg_side_x / xgo_leg_side_y (profile.c) by the leg's index
- * here, so the body IK's loop makes no calls. */
-static void leg_origin(const xgo_profile_t *p, int leg, int32_t *ox, int32_t *oy)
+/* The thigh joint of a leg (leg frame origin) in the body frame from the
+ * front left one's (ax, ay): the signs of xgo_leg_side_x / xgo_leg_side_y
+ * (profile.c) by the leg's index here, so the body IK's loop makes no
+ * calls. */
+XGO_ALWAYS_INLINE void leg_origin_of(int leg, int32_t ax, int32_t ay, int32_t *ox, int32_t *oy)
 {
-    const int32_t ax = p->hip_x_um, ay = p->hip_y_um + p->abad_offset_um;
     *ox = (leg == XGO_LEG_LF || leg == XGO_LEG_RF) ? ax : -ax;
     *oy = (leg == XGO_LEG_LF || leg == XGO_LEG_LH) ? ay : -ay;
+}
+
+static void leg_origin(const xgo_profile_t *p, int leg, int32_t *ox, int32_t *oy)
+{
+    leg_origin_of(leg, p->hip_x_um, p->hip_y_um + p->abad_offset_um, ox, oy);
 }
 
 void xgo_body_ik(const xgo_profile_t *p, const xgo_body_pose_t *pose,
@@ -837,6 +891,9 @@ void xgo_body_ik_rotated(const xgo_profile_t *p, const xgo_body_pose_t *pose,
                          xgo_vec3_t feet_leg_um[XGO_LEG_COUNT])
 {
     int32_t q[XGO_ROT_COUNT];
+    /* read once: the stores below could alias them for the compiler */
+    const int32_t px = pose->x_um, py = pose->y_um, pz = pose->z_um;
+    const int32_t ax = p->hip_x_um, ay = p->hip_y_um + p->abad_offset_um;
     int leg;
     rot_q18(rot, q);
     for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
@@ -845,10 +902,10 @@ void xgo_body_ik_rotated(const xgo_profile_t *p, const xgo_body_pose_t *pose,
         const xgo_vec3_t *f = &feet_machine_um[leg];
         xgo_vec3_t *out = &feet_leg_um[leg];
         int32_t x, y, z, ox, oy;
-        leg_origin(p, leg, &ox, &oy);
+        leg_origin_of(leg, ax, ay, &ox, &oy);
         /* (& rather than &&: all three differences are needed below anyway) */
-        if (near_diff(f->x, pose->x_um, &x) & near_diff(f->y, pose->y_um, &y) &
-            near_diff(f->z, pose->z_um, &z)) { /* every value below 2^24: no saturation */
+        if (near_diff(f->x, px, &x) & near_diff(f->y, py, &y) &
+            near_diff(f->z, pz, &z)) { /* every value below 2^24: no saturation */
             out->x = dot3_q18(q[0], q[3], q[6], x, y, z) - ox;
             out->y = dot3_q18(q[1], q[4], q[7], x, y, z) - oy;
             out->z = -dot3_q18(q[2], q[5], q[8], x, y, z);
