@@ -841,6 +841,35 @@ XGO_ALWAYS_INLINE int near_diff(int32_t a, int32_t b, int32_t *d)
 #endif
 }
 
+/* v within [-2^21, 2^21) (2 m): the difference of two such values is
+ * within NEAR_LIMIT_UM. */
+XGO_ALWAYS_INLINE int small_um(int32_t v)
+{
+    return (uint32_t)v + (1u << 21) < (1u << 22);
+}
+
+/* near_diff for the three coordinates of foot f and the pose's (px, py,
+ * pz). On a 32-bit core first the usual case, both points within 2 m
+ * (pose_small: the pose's), where the differences need no check (tick:
+ * M0 -42, M3 -92); a 64-bit host checks its plain differences as fast.
+ * The same answer and differences either way. */
+XGO_ALWAYS_INLINE int near_foot(const xgo_vec3_t *f, int32_t px, int32_t py, int32_t pz, int pose_small,
+                                int32_t *x, int32_t *y, int32_t *z)
+{
+#if !XGO_CORE_DIV64_NATIVE
+    if (pose_small & small_um(f->x) & small_um(f->y) & small_um(f->z)) {
+        *x = f->x - px;
+        *y = f->y - py;
+        *z = f->z - pz;
+        return 1;
+    }
+#else
+    (void)pose_small;
+#endif
+    /* (& rather than &&: all three differences are needed anyway) */
+    return near_diff(f->x, px, x) & near_diff(f->y, py, y) & near_diff(f->z, pz, z);
+}
+
 static int near3(int32_t a, int32_t b, int32_t c)
 {
     return a <= NEAR_LIMIT_UM && a >= -NEAR_LIMIT_UM && b <= NEAR_LIMIT_UM && b >= -NEAR_LIMIT_UM &&
@@ -894,6 +923,7 @@ void xgo_body_ik_rotated(const xgo_profile_t *p, const xgo_body_pose_t *pose,
     /* read once: the stores below could alias them for the compiler */
     const int32_t px = pose->x_um, py = pose->y_um, pz = pose->z_um;
     const int32_t ax = p->hip_x_um, ay = p->hip_y_um + p->abad_offset_um;
+    const int pose_small = small_um(px) & small_um(py) & small_um(pz);
     int leg;
     rot_q18(rot, q);
     for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
@@ -903,9 +933,7 @@ void xgo_body_ik_rotated(const xgo_profile_t *p, const xgo_body_pose_t *pose,
         xgo_vec3_t *out = &feet_leg_um[leg];
         int32_t x, y, z, ox, oy;
         leg_origin_of(leg, ax, ay, &ox, &oy);
-        /* (& rather than &&: all three differences are needed below anyway) */
-        if (near_diff(f->x, px, &x) & near_diff(f->y, py, &y) &
-            near_diff(f->z, pz, &z)) { /* every value below 2^24: no saturation */
+        if (near_foot(f, px, py, pz, pose_small, &x, &y, &z)) { /* every value below 2^24: no saturation */
             out->x = dot3_q18(q[0], q[3], q[6], x, y, z) - ox;
             out->y = dot3_q18(q[1], q[4], q[7], x, y, z) - oy;
             out->z = -dot3_q18(q[2], q[5], q[8], x, y, z);
