@@ -470,6 +470,68 @@ static void test_joint_registers_encode_from_any_last_byte(void)
     }
 }
 
+/* xgo_joints_update_bytes takes each joint's byte with one compare while
+ * the angle is inside its range: at the bounds, beyond them (any int32),
+ * from any last byte, and for ranges outside that form's bounds (empty,
+ * reversed, too wide: the plain map), it gives what xgo_joints_to_bytes
+ * gives. */
+static void test_joint_bytes_update_equals_the_plain_map(void)
+{
+    static const int32_t extremes[] = {INT32_MIN, INT32_MIN + 1, -(1 << 30) - 1, -(1 << 30), 0,
+                                       (1 << 30) - 1, 1 << 30, INT32_MAX - 1, INT32_MAX};
+    xgo_profile_t odd = *xgo_profile_mini();
+    const xgo_profile_t *profiles[5];
+    uint32_t seed = 7u;
+    unsigned k, n, leg, j;
+    profiles[0] = xgo_profile_mini();
+    profiles[1] = xgo_profile_lite();
+    profiles[2] = xgo_profile_mini2();
+    profiles[3] = &odd;
+    profiles[4] = &odd;
+    for (k = 0; k < 5; k++) {
+        const xgo_profile_t *p = profiles[k];
+        if (k == 3) { /* an empty range and a reversed one */
+            odd.joint_mdeg[0].hi = odd.joint_mdeg[0].lo;
+            odd.joint_mdeg[2].lo = 50000;
+            odd.joint_mdeg[2].hi = -50000;
+        } else if (k == 4) { /* wider than joint_byte's bounds, still a byte map */
+            odd.joint_mdeg[0].lo = -(1 << 30) - 5;
+            odd.joint_mdeg[0].hi = -(1 << 30) + 1000;
+            odd.joint_mdeg[2].lo = -3000000;
+            odd.joint_mdeg[2].hi = 3000000;
+        }
+        for (n = 0; n < 4000; n++) {
+            int32_t q[XGO_LEG_COUNT][XGO_JOINT_COUNT];
+            uint8_t want[XGO_SERVO_COUNT], got[XGO_SERVO_COUNT];
+            for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
+                for (j = 0; j < XGO_JOINT_COUNT; j++) {
+                    const xgo_range_t *r = &p->joint_mdeg[j];
+                    seed = seed * 1103515245u + 12345u;
+                    switch ((seed >> 16) % 6u) {
+                    case 0:
+                        q[leg][j] = r->lo + (int32_t)((seed >> 8) % 5u) - 2;
+                        break;
+                    case 1:
+                        q[leg][j] = r->hi + (int32_t)((seed >> 8) % 5u) - 2;
+                        break;
+                    case 2:
+                        q[leg][j] = extremes[(seed >> 8) % (sizeof extremes / sizeof extremes[0])];
+                        break;
+                    default:
+                        q[leg][j] = r->lo + (int32_t)((seed >> 4) % 400001u) - 100000;
+                        break;
+                    }
+                    seed = seed * 1103515245u + 12345u;
+                    got[leg * XGO_JOINT_COUNT + j] = (uint8_t)(seed >> 20);
+                }
+            }
+            xgo_joints_to_bytes(p, (const int32_t(*)[XGO_JOINT_COUNT])q, want);
+            xgo_joints_update_bytes(p, (const int32_t(*)[XGO_JOINT_COUNT])q, got);
+            TEST_ASSERT_EQUAL_UINT8_ARRAY(want, got, XGO_SERVO_COUNT);
+        }
+    }
+}
+
 /* The register file keeps no counters: the board forms the block on read
  * (test_board: test_diag_block_is_formed_on_read). Here it reads 0 and
  * refuses writes. */
@@ -693,6 +755,7 @@ int main(void)
     RUN_TEST(test_one_byte_attitude_reads_are_the_byte_encoding);
     RUN_TEST(test_angle_byte_encoding_against_reference);
     RUN_TEST(test_joint_registers_encode_from_any_last_byte);
+    RUN_TEST(test_joint_bytes_update_equals_the_plain_map);
     RUN_TEST(test_read_across_the_stored_image);
     RUN_TEST(test_diag_block_is_read_only);
     RUN_TEST(test_table_is_consistent);

@@ -174,6 +174,49 @@ static void test_follow_is_set_targets_then_tick(void)
     TEST_ASSERT_TRUE(reached > 10u || unknown > 0u); /* some reached it, or a Cortex-M0's form */
 }
 
+/* With every joint loaded (walking) the follow takes a short path while
+ * each target is in range and within a step: it still does what the two
+ * calls do at the limits, next to them, far beyond them (any int32), for a
+ * step of any size, and says exactly whether every joint arrived. */
+static void test_follow_with_every_joint_loaded_is_set_targets_then_tick(void)
+{
+    static const int32_t far[] = {INT32_MIN, INT32_MAX, -(1 << 30), 1 << 30, 0};
+    static const int32_t big[] = {INT32_MAX, (1 << 30) + 1, 1 << 30, (1 << 30) - 1, 0, -1};
+    xgo_servos_t two;
+    int32_t q[XGO_SERVO_COUNT];
+    uint32_t seed = 99u;
+    unsigned i, n, reached = 0, short_of = 0;
+    for (n = 0; n < 20000; n++) {
+        int32_t step;
+        int at, all;
+        seed = seed * 1103515245u + 12345u;
+        step = n % 5 == 4 ? big[(seed >> 16) % 6u] : (int32_t)((seed >> 16) % 3000u);
+        for (i = 0; i < XGO_SERVO_COUNT; i++) {
+            seed = seed * 1103515245u + 12345u;
+            q[i] = s.angle_mdeg[i] + (int32_t)((seed >> 16) % 2001u) - 1000; /* mostly within a step */
+            if (n % 9 == 0 && (seed >> 8) % 12u == i) {
+                const int32_t edge = (seed >> 12) % 2u ? limits(i)->lo : limits(i)->hi;
+                q[i] = (seed >> 13) % 3u == 0 ? far[(seed >> 20) % 5u] : edge + (int32_t)((seed >> 20) % 3u) - 1;
+            }
+        }
+        two = s;
+        xgo_servos_set_targets(&two, q);
+        xgo_servos_tick(&two, step);
+        at = xgo_servos_follow(&s, q, step);
+        all = 1;
+        for (i = 0; i < XGO_SERVO_COUNT; i++) {
+            all = all && s.angle_mdeg[i] == q[i];
+        }
+        TEST_ASSERT_EQUAL_INT(all, at);
+        TEST_ASSERT_EQUAL_INT32_ARRAY(two.angle_mdeg, s.angle_mdeg, XGO_SERVO_COUNT);
+        TEST_ASSERT_EQUAL_INT32_ARRAY(two.target_mdeg, s.target_mdeg, XGO_SERVO_COUNT);
+        reached += at == 1;
+        short_of += at == 0;
+    }
+    TEST_ASSERT_EQUAL_HEX16(0, s.unloaded);
+    TEST_ASSERT_TRUE(reached > 2000u && short_of > 2000u); /* both ways, often */
+}
+
 static void test_set_zero_moves_the_angle_into_the_offset_within_a_turn(void)
 {
     int32_t q[XGO_SERVO_COUNT];
@@ -212,6 +255,7 @@ int main(void)
     RUN_TEST(test_a_negative_step_holds_every_joint);
     RUN_TEST(test_limp_joints_ignore_targets_and_reload_without_a_jump);
     RUN_TEST(test_follow_is_set_targets_then_tick);
+    RUN_TEST(test_follow_with_every_joint_loaded_is_set_targets_then_tick);
     RUN_TEST(test_set_zero_moves_the_angle_into_the_offset_within_a_turn);
     return UNITY_END();
 }

@@ -146,23 +146,45 @@ static uint8_t byte_quotient_near(uint32_t num, uint32_t span, uint8_t guess)
     return byte_quotient(num, span);
 }
 
-/* Joint by joint (leg inner), so each range's bounds are read once: the
- * board re-encodes the twelve joints every tick. */
+/* One joint's byte (xgo_joints_update_bytes), as xgo_range_to_byte, for
+ * any v and a range lo < hi = lo + span, span < XGO_RANGE_SPAN_LIMIT: with
+ * d = v - lo (mod 2^32), 1 <= d <= span - 1 (one unsigned compare: a v
+ * below lo wraps d above hi - lo) is lo < v < hi, the range map's quotient;
+ * otherwise the byte is 0 (v <= lo) or 255 (v >= hi). */
+XGO_ALWAYS_INLINE uint8_t joint_byte(int32_t v, int32_t lo, uint32_t span, uint8_t last)
+{
+    const uint32_t d = (uint32_t)v - (uint32_t)lo;
+    if (d - 1u < span - 1u) {
+        return byte_quotient_near(255u * d, span, last);
+    }
+    return v <= lo ? 0u : 255u;
+}
+
+/* Leg by leg with the three ranges read once: the board re-encodes the
+ * twelve joints every tick. */
 void xgo_joints_update_bytes(const xgo_profile_t *p, const int32_t q_mdeg[XGO_LEG_COUNT][XGO_JOINT_COUNT],
                              uint8_t bytes[XGO_LEG_COUNT * XGO_JOINT_COUNT])
 {
-    unsigned leg, j;
-    for (j = 0; j < XGO_JOINT_COUNT; ++j) {
-        const int32_t lo = p->joint_mdeg[j].lo, hi = p->joint_mdeg[j].hi;
-        const uint32_t span = hi > lo ? span_of(&p->joint_mdeg[j]) : 0u;
+    /* the bounds in locals: the byte stores could alias the profile */
+    const int32_t lo0 = p->joint_mdeg[0].lo, lo1 = p->joint_mdeg[1].lo, lo2 = p->joint_mdeg[2].lo;
+    const uint32_t span0 = (uint32_t)p->joint_mdeg[0].hi - (uint32_t)lo0;
+    const uint32_t span1 = (uint32_t)p->joint_mdeg[1].hi - (uint32_t)lo1;
+    const uint32_t span2 = (uint32_t)p->joint_mdeg[2].hi - (uint32_t)lo2;
+    unsigned leg;
+    /* joint_byte's bounds: every profile's ranges meet them (test_profile);
+     * anything else takes the plain map */
+    if ((span0 | span1 | span2) < XGO_RANGE_SPAN_LIMIT && lo0 < p->joint_mdeg[0].hi && lo1 < p->joint_mdeg[1].hi &&
+        lo2 < p->joint_mdeg[2].hi) {
         for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
-            const int32_t v = q_mdeg[leg][j];
-            uint8_t *b = &bytes[leg * XGO_JOINT_COUNT + j];
-            *b = (span == 0u || v <= lo) ? 0u
-                 : v >= hi               ? 255u
-                                         : byte_quotient_near(255u * ((uint32_t)v - (uint32_t)lo), span, *b);
+            uint8_t *b = &bytes[leg * XGO_JOINT_COUNT];
+            b[0] = joint_byte(q_mdeg[leg][0], lo0, span0, b[0]);
+            b[1] = joint_byte(q_mdeg[leg][1], lo1, span1, b[1]);
+            b[2] = joint_byte(q_mdeg[leg][2], lo2, span2, b[2]);
         }
+        return;
     }
+    /* any other range: the plain map */
+    xgo_joints_to_bytes(p, q_mdeg, bytes);
 }
 
 void xgo_bytes_to_joints(const xgo_profile_t *p, const uint8_t in[XGO_LEG_COUNT * XGO_JOINT_COUNT],

@@ -6,7 +6,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "wide.h" /* XGO_CORE_NARROW_CPU */
+#include "compiler.h" /* XGO_ALWAYS_INLINE */
 
 /* joint: 0..2 (servo index % 3), the profile's joint ranges */
 static int32_t clamp_joint(const xgo_servos_t *s, unsigned joint, int32_t mdeg)
@@ -60,6 +60,27 @@ void xgo_servos_tick(xgo_servos_t *s, int32_t max_step_mdeg)
     }
 }
 
+/* The usual case of a loaded joint's follow (xgo_servos_follow): the target
+ * t within the joint's range [lo, lo + span] and the angle within one step
+ * of it. Then the target is t and the angle arrives: stored, returns 1;
+ * otherwise nothing is stored, returns 0. Two unsigned compares decide it,
+ * for lo <= hi = lo + span, span < 2^30 (the profile's ranges): t - lo (mod
+ * 2^32) <= span is lo <= t <= hi for every int32 t (a t below lo wraps to
+ * above hi - lo); and e + step <= 2 step (mod 2^32) is -step <= e <= step
+ * for the error e = t - angle, both inside the range (|e| <= span), and
+ * step <= 2^30 (the caller caps it: any larger step reaches every target in
+ * range alike). */
+XGO_ALWAYS_INLINE int follow_fast(int32_t *angle, int32_t *target, int32_t t, int32_t lo, uint32_t span,
+                                  uint32_t step)
+{
+    if ((uint32_t)t - (uint32_t)lo <= span && (uint32_t)t - (uint32_t)*angle + step <= 2u * step) {
+        *target = t;
+        *angle = t;
+        return 1;
+    }
+    return 0;
+}
+
 int xgo_servos_follow(xgo_servos_t *s, const int32_t target_mdeg[XGO_SERVO_COUNT], int32_t max_step_mdeg)
 {
     const xgo_range_t *range = s->profile->joint_mdeg;
@@ -68,13 +89,41 @@ int xgo_servos_follow(xgo_servos_t *s, const int32_t target_mdeg[XGO_SERVO_COUNT
     if (max_step_mdeg < 0) {
         max_step_mdeg = 0;
     }
+    if (max_step_mdeg > (1 << 30)) {
+        max_step_mdeg = 1 << 30; /* beyond any joint's span: the same steps (follow_fast) */
+    }
     if (s->unloaded == 0) {
-#if XGO_CORE_NARROW_CPU
-        /* every joint loaded (walking, actions): no per-joint mask test.
-         * Here the flag below costs the loop more than the caller's compare
-         * of the twelve angles (Cortex-M0 -Os): unknown, -1. */
-        for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
-            for (j = 0; j < XGO_JOINT_COUNT; j++, i++) {
+        /* every joint loaded (walking, actions): no per-joint mask test, and
+         * while each joint reaches a target in range (a steady walk: all of
+         * them, every tick) two compares a joint (follow_fast), the ranges
+         * read once */
+        const uint32_t step = (uint32_t)max_step_mdeg;
+        const int32_t lo0 = range[0].lo, lo1 = range[1].lo, lo2 = range[2].lo;
+        const uint32_t span0 = (uint32_t)range[0].hi - (uint32_t)lo0;
+        const uint32_t span1 = (uint32_t)range[1].hi - (uint32_t)lo1;
+        const uint32_t span2 = (uint32_t)range[2].hi - (uint32_t)lo2;
+        /* follow_fast's bounds hold: every profile's joint ranges have lo <
+         * hi and a span below 2^23 (codec.h's XGO_RANGE_SPAN_LIMIT; checked
+         * by test_profile, not every tick) */
+        for (i = 0; i < XGO_SERVO_COUNT; i += XGO_JOINT_COUNT) {
+            if (!follow_fast(&s->angle_mdeg[i], &s->target_mdeg[i], target_mdeg[i], lo0, span0, step) ||
+                !follow_fast(&s->angle_mdeg[i + 1u], &s->target_mdeg[i + 1u], target_mdeg[i + 1u], lo1,
+                             span1, step) ||
+                !follow_fast(&s->angle_mdeg[i + 2u], &s->target_mdeg[i + 2u], target_mdeg[i + 2u], lo2,
+                             span2, step)) {
+                break;
+            }
+        }
+        if (i == XGO_SERVO_COUNT) {
+            return 1; /* every angle is its target as given */
+        }
+        /* a joint limited or short of its target, so the result is 0 (a
+         * limited target is out of range and the angle within it, a
+         * step short leaves the angle elsewhere): the rest of this leg
+         * and the next ones the general way (on the joints of this leg
+         * follow_fast did, the general step does the same again) */
+        for (leg = i / XGO_JOINT_COUNT; leg < XGO_LEG_COUNT; leg++) {
+            for (j = 0, i = leg * XGO_JOINT_COUNT; j < XGO_JOINT_COUNT; j++, i++) {
                 const int32_t t = target_mdeg[i] < range[j].lo   ? range[j].lo
                                   : target_mdeg[i] > range[j].hi ? range[j].hi
                                                                  : target_mdeg[i];
@@ -82,38 +131,7 @@ int xgo_servos_follow(xgo_servos_t *s, const int32_t target_mdeg[XGO_SERVO_COUNT
                 s->angle_mdeg[i] = step_toward(s->angle_mdeg[i], t, max_step_mdeg);
             }
         }
-        (void)at;
-        return -1;
-#else
-        /* every joint loaded (walking, actions): no per-joint mask test. A
-         * limited target is out of range and the angle within it, a step
-         * short of the target leaves the angle elsewhere: either way the
-         * angle differs from target_mdeg[i]; otherwise it is that value. */
-        for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
-            for (j = 0; j < XGO_JOINT_COUNT; j++, i++) {
-                int32_t t = target_mdeg[i], error;
-                if (t < range[j].lo) {
-                    t = range[j].lo;
-                    at = 0;
-                } else if (t > range[j].hi) {
-                    t = range[j].hi;
-                    at = 0;
-                }
-                s->target_mdeg[i] = t;
-                error = t - s->angle_mdeg[i];
-                if (error > max_step_mdeg) {
-                    s->angle_mdeg[i] += max_step_mdeg;
-                    at = 0;
-                } else if (error < -max_step_mdeg) {
-                    s->angle_mdeg[i] -= max_step_mdeg;
-                    at = 0;
-                } else {
-                    s->angle_mdeg[i] = t;
-                }
-            }
-        }
-        return at;
-#endif
+        return 0;
     }
     /* one pass instead of two; leg by joint, no i % 3 */
     for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
