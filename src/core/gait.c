@@ -29,7 +29,8 @@
  *   3. cadence      nominal, fitted and transient rates -> this tick's rate;
  *   4. phase        the master phase advances: touchdowns, gait switch,
  *                   lift-offs;
- *   5. trajectories stance feet move with the ground, swing feet fly.
+ *   5. trajectories stance feet move with the ground, swing feet fly
+ *                   (4 and 5 leg by leg: step_legs).
  * (CHAMP's phase generator / trajectory planner split, in fixed point.)
  *
  * Integer arithmetic only. Positions are kept in 1/256 um so that slow
@@ -173,18 +174,23 @@ static uint32_t fit_rate(uint32_t speed, uint32_t h, uint32_t k_rate)
     return (uint32_t)(xgo_umul_wide(q, k_rate) >> 11);
 }
 
-/* The feet's x, y and contacts; z is the swing's, set by swing_step (every
+/* A foot's x, y and contact; z is the swing's, set by swing_step (every
  * swinging foot takes a swing step each tick), 0 for a planted foot. */
+XGO_ALWAYS_INLINE void publish_foot(xgo_gait_t *g, int leg)
+{
+    g->foot_um[leg].x = (g->pos_q8[leg][0] + 128) >> 8;
+    g->foot_um[leg].y = (g->pos_q8[leg][1] + 128) >> 8;
+    if (!g->swinging[leg]) {
+        g->foot_um[leg].z = 0;
+    }
+    g->contact[leg] = (uint8_t)!g->swinging[leg];
+}
+
 static void publish(xgo_gait_t *g)
 {
     int leg;
     for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
-        g->foot_um[leg].x = (g->pos_q8[leg][0] + 128) >> 8;
-        g->foot_um[leg].y = (g->pos_q8[leg][1] + 128) >> 8;
-        if (!g->swinging[leg]) {
-            g->foot_um[leg].z = 0;
-        }
-        g->contact[leg] = (uint8_t)!g->swinging[leg];
+        publish_foot(g, leg);
     }
 }
 
@@ -428,16 +434,17 @@ static void ramp_velocity(xgo_gait_t *g, gait_tick_t *x)
     uint32_t widening = gait_yaw_widening_um(yaw);
     int leg;
     int c;
-    for (c = 0; c < 3; ++c) {
-        prop[c] = g->v_ramp[c] + clamp32(x->target[c] - g->v_ramp[c], -step_max[c], step_max[c]);
-    }
     for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
         const int32_t ry = XGO_GAIT_REACH_Y_UM + (int32_t)widening;
         if (!g->swinging[leg] && ry > g->reach_y_um[leg]) {
             g->reach_y_um[leg] = ry;
         }
     }
-    if (prop[0] != g->v_ramp[0] || prop[1] != g->v_ramp[1] || prop[2] != g->v_ramp[2]) {
+    /* at the target (a steady walk) the step is zero: nothing to ramp */
+    if (x->target[0] != g->v_ramp[0] || x->target[1] != g->v_ramp[1] || x->target[2] != g->v_ramp[2]) {
+        for (c = 0; c < 3; ++c) {
+            prop[c] = g->v_ramp[c] + clamp32(x->target[c] - g->v_ramp[c], -step_max[c], step_max[c]);
+        }
         gait_governed_ramp(g, x->t, prop); /* a call only while ramping */
         if (g->v_ramp[2] != yaw) {
             yaw = g->v_ramp[2];
@@ -486,7 +493,7 @@ static uint32_t fit_cadence(xgo_gait_t *g, const gait_tick_t *x)
             rate_fit = x->t->rate_max;
         }
         g->cache_rate_fit = rate_fit;
-        /* the swing time at that rate (move_feet): < 2^16, as the short
+        /* the swing time at that rate (swing_time): < 2^16, as the short
          * products with it need (mul_q_u16): rate_fit is at least the
          * slowest nominal rate (RATE(1200) >> 8 = 27962; every cap is
          * faster), so it is at most KSWING(1, 2) / 27962 = 39321. Kept with
@@ -499,6 +506,40 @@ static uint32_t fit_cadence(xgo_gait_t *g, const gait_tick_t *x)
     return g->cache_rate_fit;
 }
 
+/* The transient rule on one axis of a planted foot (transient_rate): its
+ * mean ground speed fm (um/s) along the axis, off (um) from its stance
+ * point, the half-stride budget h, the phase left before its lift-off;
+ * returns the rate, raised if the foot would cross the budget's edge before
+ * it lifts at this one. Inline with the axis' fields: no arrays indexed by
+ * the axis. */
+XGO_ALWAYS_INLINE uint32_t transient_axis(const gait_table_t *t, int32_t fm, int32_t off, uint32_t h,
+                                          uint32_t remaining, uint32_t rate)
+{
+    int32_t d;
+    uint64_t travel;
+    uint64_t room;
+    if (fm == 0) {
+        return rate;
+    }
+    d = (int32_t)h + (fm > 0 ? off : -off);
+    if (d <= 0) {
+        return t->rate_max;
+    }
+#if XGO_CORE_NARROW_CPU
+    if (gait_quick_fit(abs_u(fm), remaining, (uint32_t)d, rate)) {
+        return rate; /* travel <= room: the two wide products spared */
+    }
+#endif
+    travel = xgo_umul_wide(abs_u(fm), remaining);
+    room = xgo_umul_wide(TICKS_PER_S * (uint32_t)d, rate);
+    if (travel > room) {
+        /* the quotient only matters up to rate_max */
+        rate = xgo_udiv64_cap(travel, TICKS_PER_S * (uint32_t)d, t->rate_max);
+        rate = rate < t->rate_max ? rate + 1u : t->rate_max;
+    }
+    return rate;
+}
+
 /* Transient rule: every planted foot must reach its lift-off before it
  * crosses the edge of the stride budget at its current velocity; returns
  * the rate that ensures it (at least `rate`, at most the cap). Keeps each
@@ -507,44 +548,22 @@ static uint32_t transient_rate(const xgo_gait_t *g, gait_tick_t *x, uint32_t rat
 {
     const gait_table_t *t = x->t;
     int leg;
-    int c;
     for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
         uint32_t remaining;
         int32_t q[2];
         int32_t fm[2];
+        int32_t px, py;
         if (g->swinging[leg]) {
             continue;
         }
-        gait_tick_foot_velocity(x, g->pos_q8[leg][0] >> 8, g->pos_q8[leg][1] >> 8, x->vf[leg]);
+        px = g->pos_q8[leg][0] >> 8;
+        py = g->pos_q8[leg][1] >> 8;
+        gait_tick_foot_velocity(x, px, py, x->vf[leg]);
         remaining = 0u - (g->phase - t->lift[leg]);
         gait_midpoint_of(g, leg, x->vf[leg], half_time_q16(t, remaining), q);
         gait_tick_foot_velocity(x, q[0], q[1], fm);
-        for (c = 0; c < 2; ++c) {
-            int32_t off = (g->pos_q8[leg][c] >> 8) - g->stance_um[leg][c];
-            int32_t d;
-            uint64_t travel;
-            uint64_t room;
-            if (fm[c] == 0) {
-                continue;
-            }
-            d = (int32_t)(c == 0 ? x->hx : x->hy) + (fm[c] > 0 ? off : -off);
-            if (d <= 0) {
-                rate = t->rate_max;
-                continue;
-            }
-#if XGO_CORE_NARROW_CPU
-            if (gait_quick_fit(abs_u(fm[c]), remaining, (uint32_t)d, rate)) {
-                continue; /* travel <= room: the two wide products spared */
-            }
-#endif
-            travel = xgo_umul_wide(abs_u(fm[c]), remaining);
-            room = xgo_umul_wide(TICKS_PER_S * (uint32_t)d, rate);
-            if (travel > room) {
-                /* the quotient only matters up to rate_max */
-                rate = xgo_udiv64_cap(travel, TICKS_PER_S * (uint32_t)d, t->rate_max);
-                rate = rate < t->rate_max ? rate + 1u : t->rate_max;
-            }
-        }
+        rate = transient_axis(t, fm[0], px - g->stance_um[leg][0], x->hx, remaining, rate);
+        rate = transient_axis(t, fm[1], py - g->stance_um[leg][1], x->hy, remaining, rate);
     }
     return rate;
 }
@@ -586,29 +605,21 @@ static void stance_part(const gait_tick_t *x, int32_t pos_q8[2], uint32_t theta,
     }
 }
 
-/* Touchdowns under the table in use: a foot whose swing ended is placed at
- * its touchdown point. Returns 1 if a foot is still in the air. */
-static int land_feet(xgo_gait_t *g, gait_tick_t *x)
+/* A touchdown under the table in use: a swinging foot whose swing ended is
+ * placed at its touchdown point. Returns 1 if it touched down. */
+XGO_ALWAYS_INLINE int touch_down(xgo_gait_t *g, const gait_tick_t *x, int leg)
 {
     const gait_table_t *t = x->t;
-    int any_swing = 0;
-    int leg;
-    for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
-        if (g->swinging[leg]) {
-            if (g->phase - t->lift[leg] >= t->swing) {
-                g->swinging[leg] = 0;
-                g->pos_q8[leg][0] = g->land_q8[leg][0];
-                g->pos_q8[leg][1] = g->land_q8[leg][1];
-                /* down for the part of the tick after the touchdown */
-                stance_part(x, g->pos_q8[leg], g->phase - t->lift[leg] - t->swing, 0);
-                g->reach_y_um[leg] = gait_reach_y(g->v_ramp[2]);
-                x->moved[leg] = 1;
-            } else {
-                any_swing = 1;
-            }
-        }
+    if (g->phase - t->lift[leg] < t->swing) {
+        return 0;
     }
-    return any_swing;
+    g->swinging[leg] = 0;
+    g->pos_q8[leg][0] = g->land_q8[leg][0];
+    g->pos_q8[leg][1] = g->land_q8[leg][1];
+    /* down for the part of the tick after the touchdown */
+    stance_part(x, g->pos_q8[leg], g->phase - t->lift[leg] - t->swing, 0);
+    g->reach_y_um[leg] = gait_reach_y(g->v_ramp[2]);
+    return 1;
 }
 
 /* Gait change: tables with the same timing switch at once; otherwise at a
@@ -650,60 +661,45 @@ static void switch_gait(xgo_gait_t *g, gait_tick_t *x, int any_swing)
     }
 }
 
-/* Lift-offs: a planted foot whose lift-off phase passed on this tick starts
- * its swing (the table's height, or the mark-time height) from where it is;
- * stopping, a foot already home stays down. */
-static void lift_feet(xgo_gait_t *g, const gait_tick_t *x)
+/* A lift-off: a planted foot whose lift-off phase passed on this tick
+ * starts its swing (the table's height, or the mark-time height) from
+ * where it is; stopping, a foot already home stays down. */
+static void lift_foot(xgo_gait_t *g, const gait_tick_t *x, int leg)
 {
-    int leg;
-    for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
-        if (!g->swinging[leg] && !x->moved[leg] && g->phase - x->t->lift[leg] < x->rate) {
-            if (x->resting && at_stance(g, leg)) {
-                continue;
-            }
-            g->swinging[leg] = 1;
-            g->lift_q8[leg][0] = g->pos_q8[leg][0];
-            g->lift_q8[leg][1] = g->pos_q8[leg][1];
-            /* still down for the part of the tick before the lift-off */
-            stance_part(x, g->lift_q8[leg], g->phase - x->t->lift[leg], 1);
-            g->swing_height_um[leg] = x->mark > 0 ? x->mark : (x->height > 0 ? x->height : x->t->height_um);
+    if (g->phase - x->t->lift[leg] < x->rate) {
+        if (x->resting && at_stance(g, leg)) {
+            return;
         }
+        g->swinging[leg] = 1;
+        g->lift_q8[leg][0] = g->pos_q8[leg][0];
+        g->lift_q8[leg][1] = g->pos_q8[leg][1];
+        /* still down for the part of the tick before the lift-off */
+        stance_part(x, g->lift_q8[leg], g->phase - x->t->lift[leg], 1);
+        g->swing_height_um[leg] = x->mark > 0 ? x->mark : (x->height > 0 ? x->height : x->t->height_um);
     }
-}
-
-/* The master phase advances by the rate; the events it crossed fire in
- * order: touchdowns, a gait switch, lift-offs. */
-static void advance_phase(xgo_gait_t *g, gait_tick_t *x)
-{
-    int leg;
-    for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
-        x->moved[leg] = 0;
-    }
-    g->phase += x->rate;
-    g->rate = x->rate;
-    switch_gait(g, x, land_feet(g, x));
-    lift_feet(g, x);
 }
 
 /* ------------------------------------------------------------ 5. trajectories */
 
 /* Stance: the ground moves by -(v + w x p) dt under the foot; a foot that
  * would leave the last-resort box stays at its edge (counted). */
+XGO_ALWAYS_INLINE void stance_axis(xgo_gait_t *g, const gait_tick_t *x, int leg, int c, int32_t lim)
+{
+    const int32_t nom = g->stance_um[leg][c] * 256;
+    int32_t p = g->pos_q8[leg][c] - mul_q(x->vf[leg][c], K_UMS_TO_Q8_TICK_Q31, 31u);
+    /* p > nom + lim or p < nom - lim: one unsigned compare (|p - nom| is a
+     * stance box and a tick's travel, far inside int32) */
+    if ((uint32_t)(p - nom) + (uint32_t)lim > 2u * (uint32_t)lim) {
+        p = clamp32(p, nom - lim, nom + lim);
+        g->clamped_ticks++;
+    }
+    g->pos_q8[leg][c] = p;
+}
+
 static void stance_step(xgo_gait_t *g, const gait_tick_t *x, int leg)
 {
-    int32_t lim[2];
-    int c;
-    lim[0] = XGO_GAIT_REACH_X_UM * 256;
-    lim[1] = CLAMP_Y_UM * 256;
-    for (c = 0; c < 2; ++c) {
-        int32_t nom = g->stance_um[leg][c] * 256;
-        int32_t p = g->pos_q8[leg][c] - mul_q(x->vf[leg][c], K_UMS_TO_Q8_TICK_Q31, 31u);
-        if (p > nom + lim[c] || p < nom - lim[c]) {
-            p = clamp32(p, nom - lim[c], nom + lim[c]);
-            g->clamped_ticks++;
-        }
-        g->pos_q8[leg][c] = p;
-    }
+    stance_axis(g, x, leg, 0, XGO_GAIT_REACH_X_UM * 256);
+    stance_axis(g, x, leg, 1, CLAMP_Y_UM * 256);
 }
 
 /* The landing point follows the touchdown point (which moves with the
@@ -815,20 +811,20 @@ static void swing_step(xgo_gait_t *g, gait_tick_t *x, int leg)
     gait_tick_foot_velocity(x, td[0] >> 8, td[1] >> 8, f1);
     for (c = 0; c < 2; ++c) {
         /* end tangents in 1/256 um per unit of psi: -f * T_swing
-         * (T_swing < 2^16, move_feet) */
+         * (T_swing < 2^16, swing_time) */
         const int32_t m0 = -mul_q_u16(f0[c], x->swing_q16, 8u);
         const int32_t m1 = -mul_q_u16(f1[c], x->swing_q16, 8u);
         g->pos_q8[leg][c] = g->lift_q8[leg][c] + mul_q(td[c] - g->lift_q8[leg][c], wt->h, 26u) +
                             mul_q(m0, wt->ca, 26u) + mul_q(m1, wt->cb, 26u);
     }
-    /* the height is at most XGO_GAIT_MAX_HEIGHT_UM < 2^16 (lift_feet) */
+    /* the height is at most XGO_GAIT_MAX_HEIGHT_UM < 2^16 (lift_foot) */
     g->foot_um[leg].z = mul_q_u16(wt->s2, (uint32_t)g->swing_height_um[leg], 30u);
 }
 
-static void move_feet(xgo_gait_t *g, gait_tick_t *x)
+/* The swing's duration at this tick's rate (swing_step). */
+static void swing_time(const xgo_gait_t *g, gait_tick_t *x)
 {
     const uint32_t r = x->rate >> 8;
-    int leg;
     /* at the fitted rate (no transient raised it) under the table it was
      * fitted for, the one kept with it (fit_cadence) */
     x->swing_q16 = x->rate == g->cache_rate_fit && x->t == table_of(g->cache_v_type)
@@ -838,20 +834,65 @@ static void move_feet(xgo_gait_t *g, gait_tick_t *x)
      * the swing lasts at most KSWING(1, 2) / 27962 = 39321 */
     XGO_ASSERT(x->swing_q16 < 65536u);
     x->have_weights = 0;
+}
+
+/* One leg's events and step: a touchdown (unless the touchdowns were done
+ * already: land 0), or a lift-off; then a foot not just placed at its
+ * touchdown point moves on its path (stance or swing). */
+static void step_leg(xgo_gait_t *g, gait_tick_t *x, int leg, int land)
+{
+    if (g->swinging[leg]) {
+        if (land && touch_down(g, x, leg)) {
+            return; /* down at its touchdown point for the rest of the tick */
+        }
+    } else {
+        lift_foot(g, x, leg);
+    }
+    if (!g->swinging[leg]) {
+        stance_step(g, x, leg);
+    } else {
+        swing_step(g, x, leg);
+    }
+}
+
+/* The master phase advances by the rate; the events it crossed fire in
+ * order - touchdowns, a gait switch, lift-offs - and the feet move. A switch
+ * can only happen while another gait is asked for (and the command does
+ * not rest), and it needs every touchdown first (it waits for four feet
+ * down): then the touchdowns go first, leg by leg. Otherwise one leg's
+ * events and step do not depend on another's, and each leg goes through
+ * them, published, in one pass. */
+static void step_legs(xgo_gait_t *g, gait_tick_t *x)
+{
+    const int switching = x->want_type != g->type && !x->resting;
+    unsigned landed = 0; /* bit leg: placed at its touchdown this tick */
+    int leg;
+    g->phase += x->rate;
+    g->rate = x->rate;
+    if (switching) {
+        int any_swing = 0;
+        for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
+            if (g->swinging[leg]) {
+                if (touch_down(g, x, leg)) {
+                    landed |= 1u << leg;
+                } else {
+                    any_swing = 1;
+                }
+            }
+        }
+        switch_gait(g, x, any_swing);
+    }
+    swing_time(g, x);
     for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
-        if (x->moved[leg]) {
-            continue;
+        if (((landed >> leg) & 1u) == 0) {
+            step_leg(g, x, leg, !switching);
         }
-        if (!g->swinging[leg]) {
-            stance_step(g, x, leg);
-        } else {
-            swing_step(g, x, leg);
-        }
+        publish_foot(g, leg);
     }
 }
 
 /* Outputs: the produced velocity, standing once a zero command has brought
- * every foot home, the feet. */
+ * every foot home (the feet are published as they move: step_legs). */
 static void publish_tick(xgo_gait_t *g, const gait_tick_t *x)
 {
     int leg;
@@ -870,7 +911,6 @@ static void publish_tick(xgo_gait_t *g, const gait_tick_t *x)
             g->rate = 0;
         }
     }
-    publish(g);
 }
 
 /* ------------------------------------------------------------ tick */
@@ -887,7 +927,6 @@ void xgo_gait_tick(xgo_gait_t *g, const xgo_gait_command_t *cmd)
     limit_speed(g, &x);
     ramp_velocity(g, &x);
     pick_cadence(g, &x);
-    advance_phase(g, &x);
-    move_feet(g, &x);
+    step_legs(g, &x);
     publish_tick(g, &x);
 }

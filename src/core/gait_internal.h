@@ -73,8 +73,7 @@ typedef struct gait_tick_s {
                             touchdown point is: touchdown_q8) */
     uint32_t rate;       /* phase advance of this tick */
     int32_t vf[XGO_LEG_COUNT][2]; /* ground velocity of each planted foot */
-    /* events (phase stage) and trajectories */
-    uint8_t moved[XGO_LEG_COUNT]; /* position already set this tick (touchdown) */
+    /* trajectories */
     int have_weights;             /* weights holds a swing leg's this tick */
     gait_swing_weights_t weights;
 } gait_tick_t;
