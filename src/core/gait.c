@@ -176,21 +176,21 @@ static uint32_t fit_rate(uint32_t speed, uint32_t h, uint32_t k_rate)
 
 /* A foot's x, y and contact; z is the swing's, set by swing_step (every
  * swinging foot takes a swing step each tick), 0 for a planted foot. */
-XGO_ALWAYS_INLINE void publish_foot(xgo_gait_t *g, int leg)
+XGO_ALWAYS_INLINE void publish_foot(xgo_gait_t *g, int leg, int swinging)
 {
     g->foot_um[leg].x = (g->pos_q8[leg][0] + 128) >> 8;
     g->foot_um[leg].y = (g->pos_q8[leg][1] + 128) >> 8;
-    if (!g->swinging[leg]) {
+    if (!swinging) {
         g->foot_um[leg].z = 0;
     }
-    g->contact[leg] = (uint8_t)!g->swinging[leg];
+    g->contact[leg] = (uint8_t)!swinging;
 }
 
 static void publish(xgo_gait_t *g)
 {
     int leg;
     for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
-        publish_foot(g, leg);
+        publish_foot(g, leg, g->swinging[leg]);
     }
 }
 
@@ -663,12 +663,13 @@ static void switch_gait(xgo_gait_t *g, gait_tick_t *x, int any_swing)
 
 /* A lift-off: a planted foot whose lift-off phase passed on this tick
  * starts its swing (the table's height, or the mark-time height) from
- * where it is; stopping, a foot already home stays down. */
-static void lift_foot(xgo_gait_t *g, const gait_tick_t *x, int leg)
+ * where it is; stopping, a foot already home stays down. Returns 1 if it
+ * lifted. */
+static int lift_foot(xgo_gait_t *g, const gait_tick_t *x, int leg)
 {
     if (g->phase - x->t->lift[leg] < x->rate) {
         if (x->resting && at_stance(g, leg)) {
-            return;
+            return 0;
         }
         g->swinging[leg] = 1;
         g->lift_q8[leg][0] = g->pos_q8[leg][0];
@@ -676,7 +677,9 @@ static void lift_foot(xgo_gait_t *g, const gait_tick_t *x, int leg)
         /* still down for the part of the tick before the lift-off */
         stance_part(x, g->lift_q8[leg], g->phase - x->t->lift[leg], 1);
         g->swing_height_um[leg] = x->mark > 0 ? x->mark : (x->height > 0 ? x->height : x->t->height_um);
+        return 1;
     }
+    return 0;
 }
 
 /* ------------------------------------------------------------ 5. trajectories */
@@ -836,32 +839,33 @@ static void swing_time(const xgo_gait_t *g, gait_tick_t *x)
     x->have_weights = 0;
 }
 
-/* One leg's events and step: a touchdown (unless the touchdowns were done
- * already: land 0), or a lift-off; then a foot not just placed at its
- * touchdown point moves on its path (stance or swing). */
+/* One leg's events and step, published: a touchdown (unless the
+ * touchdowns were done already: land 0), or a lift-off; then a foot not
+ * just placed at its touchdown point moves on its path (stance or swing).
+ * Each way knows whether the foot is in the air (publish_foot). */
 static void step_leg(xgo_gait_t *g, gait_tick_t *x, int leg, int land)
 {
     if (g->swinging[leg]) {
         if (land && touch_down(g, x, leg)) {
-            return; /* down at its touchdown point for the rest of the tick */
+            publish_foot(g, leg, 0); /* down at its touchdown point for the rest of the tick */
+            return;
         }
-    } else {
-        lift_foot(g, x, leg);
-    }
-    if (!g->swinging[leg]) {
+    } else if (!lift_foot(g, x, leg)) {
         stance_step(g, x, leg);
-    } else {
-        swing_step(g, x, leg);
+        publish_foot(g, leg, 0);
+        return;
     }
+    swing_step(g, x, leg);
+    publish_foot(g, leg, 1);
 }
 
 /* The master phase advances by the rate; the events it crossed fire in
  * order - touchdowns, a gait switch, lift-offs - and the feet move. A switch
  * can only happen while another gait is asked for (and the command does
  * not rest), and it needs every touchdown first (it waits for four feet
- * down): then the touchdowns go first, leg by leg. Otherwise one leg's
- * events and step do not depend on another's, and each leg goes through
- * them, published, in one pass. */
+ * down): then the touchdowns go first. Otherwise one leg's events and step
+ * do not depend on another's, and each leg goes through them, published,
+ * in one pass. */
 static void step_legs(xgo_gait_t *g, gait_tick_t *x)
 {
     const int switching = x->want_type != g->type && !x->resting;
@@ -886,8 +890,9 @@ static void step_legs(xgo_gait_t *g, gait_tick_t *x)
     for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
         if (((landed >> leg) & 1u) == 0) {
             step_leg(g, x, leg, !switching);
+        } else {
+            publish_foot(g, leg, 0); /* placed at its touchdown point this tick */
         }
-        publish_foot(g, leg);
     }
 }
 
