@@ -884,6 +884,54 @@ static void test_caches_change_no_result(void)
     }
 }
 
+/* A planted foot's y reach grows with the yaw rate it sees: after every
+ * tick each foot planted at its start has the larger of its reach and that
+ * of the tick's starting yaw rate (14 mm more at 100 deg/s; the gait grows
+ * it before a ramp moves, or in its pass over the planted feet while the
+ * velocity holds), under random commands with ramps, stops, switches. */
+static void test_planted_reach_grows_with_the_yaw_rate_seen(void)
+{
+    xgo_gait_command_t c = command(0, 0, 0, 0, 0);
+    long t = 0;
+    unsigned grown = 0;
+    rng_state = 777u;
+    xgo_gait_init(&g, k_stance);
+    while (t < 40000) {
+        int hold = rnd_range(1, 400);
+        int i, leg;
+        c.vx_um_s = rnd_speed(250000);
+        c.vy_um_s = rnd_speed(180000);
+        c.vyaw_mdeg_s = rnd_speed(100000);
+        c.type = (uint8_t)(rnd() % 4);
+        c.pace = (uint8_t)(rnd() % 3);
+        c.mark_time_um = rnd() % 6 == 0 ? rnd_range(10000, 35000) : 0;
+        for (i = 0; i < hold; ++i, ++t) {
+            const int32_t yaw = g.vyaw_mdeg_s < 0 ? -g.vyaw_mdeg_s : g.vyaw_mdeg_s;
+            const int32_t ry = XGO_GAIT_REACH_Y_UM +
+                               (yaw > XGO_GAIT_YAW_REF_MDEG_S ? XGO_GAIT_YAW_REF_MDEG_S : yaw) / 50 * 7 +
+                               (yaw > XGO_GAIT_YAW_REF_MDEG_S ? 0 : yaw % 50 * 7 / 50);
+            const int was_standing = g.standing;
+            int32_t before[XGO_LEG_COUNT];
+            uint8_t planted[XGO_LEG_COUNT];
+            for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
+                before[leg] = g.reach_y_um[leg];
+                planted[leg] = (uint8_t)!g.swinging[leg];
+            }
+            xgo_gait_tick(&g, &c);
+            if (was_standing && g.standing) {
+                continue; /* a zero command kept it standing: nothing moved */
+            }
+            for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
+                if (planted[leg]) {
+                    TEST_ASSERT_EQUAL_INT32(before[leg] > ry ? before[leg] : ry, g.reach_y_um[leg]);
+                    grown += before[leg] < ry;
+                }
+            }
+        }
+    }
+    TEST_ASSERT_TRUE(grown > 100u);
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -905,6 +953,7 @@ int main(void)
     RUN_TEST(test_random_commands_without_yaw_keep_vendor_box);
     RUN_TEST(test_swing_feet_meet_the_ground_near_its_speed_while_it_changes);
     RUN_TEST(test_caches_change_no_result);
+    RUN_TEST(test_planted_reach_grows_with_the_yaw_rate_seen);
     printf("gait: worst speed error %.3f %%, yaw-rate error %.3f %%; worst stop %u ticks (%.2f s); "
            "largest foot step %.0f um/tick (trots), %.0f um/tick (walks); largest planted offset x %.0f um, "
            "y %.0f um (no yaw), y %.0f um (with yaw); highest foot %d um; odometry residual %.2f um\n",

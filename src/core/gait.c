@@ -434,14 +434,18 @@ static void ramp_velocity(xgo_gait_t *g, gait_tick_t *x)
     uint32_t widening = gait_yaw_widening_um(yaw);
     int leg;
     int c;
-    for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
-        const int32_t ry = XGO_GAIT_REACH_Y_UM + (int32_t)widening;
-        if (!g->swinging[leg] && ry > g->reach_y_um[leg]) {
-            g->reach_y_um[leg] = ry;
-        }
-    }
+    /* the planted feet's reach grows with the yaw rate before the ramp;
+     * nothing reads it before transient_rate, whose pass over them does it
+     * (x->reach_y) unless the ramp moves (the governor reads it) */
+    x->reach_y = XGO_GAIT_REACH_Y_UM + (int32_t)widening;
     /* at the target (a steady walk) the step is zero: nothing to ramp */
     if (x->target[0] != g->v_ramp[0] || x->target[1] != g->v_ramp[1] || x->target[2] != g->v_ramp[2]) {
+        for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
+            if (!g->swinging[leg] && x->reach_y > g->reach_y_um[leg]) {
+                g->reach_y_um[leg] = x->reach_y;
+            }
+        }
+        x->reach_y = 0; /* done: below every reach */
         for (c = 0; c < 3; ++c) {
             prop[c] = g->v_ramp[c] + clamp32(x->target[c] - g->v_ramp[c], -step_max[c], step_max[c]);
         }
@@ -543,8 +547,9 @@ XGO_ALWAYS_INLINE uint32_t transient_axis(const gait_table_t *t, int32_t fm, int
 /* Transient rule: every planted foot must reach its lift-off before it
  * crosses the edge of the stride budget at its current velocity; returns
  * the rate that ensures it (at least `rate`, at most the cap). Keeps each
- * planted foot's ground velocity in x->vf for the stance step. */
-static uint32_t transient_rate(const xgo_gait_t *g, gait_tick_t *x, uint32_t rate)
+ * planted foot's ground velocity in x->vf for the stance step, and grows
+ * its y reach to x->reach_y (ramp_velocity). */
+static uint32_t transient_rate(xgo_gait_t *g, gait_tick_t *x, uint32_t rate)
 {
     const gait_table_t *t = x->t;
     int leg;
@@ -555,6 +560,9 @@ static uint32_t transient_rate(const xgo_gait_t *g, gait_tick_t *x, uint32_t rat
         int32_t px, py;
         if (g->swinging[leg]) {
             continue;
+        }
+        if (x->reach_y > g->reach_y_um[leg]) {
+            g->reach_y_um[leg] = x->reach_y; /* ramp_velocity's, for a steady velocity */
         }
         px = g->pos_q8[leg][0] >> 8;
         py = g->pos_q8[leg][1] >> 8;
@@ -786,6 +794,21 @@ static void swing_weights(const gait_table_t *t, uint32_t theta, gait_swing_weig
     wt->follow = land_follow(u);
 }
 
+/* One coordinate of a swing foot on the curve (swing_step), landing at
+ * td, with the ground velocities f0 at the lift-off point and f1 at the
+ * landing point. */
+XGO_ALWAYS_INLINE void swing_axis(xgo_gait_t *g, const gait_tick_t *x, int leg, int c, int32_t td, int32_t f0,
+                                  int32_t f1)
+{
+    const gait_swing_weights_t *wt = &x->weights;
+    const int32_t lift = g->lift_q8[leg][c];
+    /* end tangents in 1/256 um per unit of psi: -f * T_swing (T_swing <
+     * 2^16, swing_time) */
+    const int32_t m0 = -mul_q_u16(f0, x->swing_q16, 8u);
+    const int32_t m1 = -mul_q_u16(f1, x->swing_q16, 8u);
+    g->pos_q8[leg][c] = lift + mul_q(td - lift, wt->h, 26u) + mul_q(m0, wt->ca, 26u) + mul_q(m1, wt->cb, 26u);
+}
+
 /* One swing foot's step on that curve. The weights depend on the phase
  * since lift-off alone, so a leg lifting with one already moved this tick
  * (the other foot of a trot's pair) takes them over: same numbers, one
@@ -795,7 +818,6 @@ static void swing_step(xgo_gait_t *g, gait_tick_t *x, int leg)
     const uint32_t theta = g->phase - x->t->lift[leg];
     const gait_swing_weights_t *wt = &x->weights;
     int32_t td[2], f0[2], f1[2];
-    int c;
     if (!x->have_weights || wt->theta != theta) {
         swing_weights(x->t, theta, &x->weights);
         x->have_weights = 1;
@@ -812,14 +834,8 @@ static void swing_step(xgo_gait_t *g, gait_tick_t *x, int leg)
     }
     gait_tick_foot_velocity(x, g->lift_q8[leg][0] >> 8, g->lift_q8[leg][1] >> 8, f0);
     gait_tick_foot_velocity(x, td[0] >> 8, td[1] >> 8, f1);
-    for (c = 0; c < 2; ++c) {
-        /* end tangents in 1/256 um per unit of psi: -f * T_swing
-         * (T_swing < 2^16, swing_time) */
-        const int32_t m0 = -mul_q_u16(f0[c], x->swing_q16, 8u);
-        const int32_t m1 = -mul_q_u16(f1[c], x->swing_q16, 8u);
-        g->pos_q8[leg][c] = g->lift_q8[leg][c] + mul_q(td[c] - g->lift_q8[leg][c], wt->h, 26u) +
-                            mul_q(m0, wt->ca, 26u) + mul_q(m1, wt->cb, 26u);
-    }
+    swing_axis(g, x, leg, 0, td[0], f0[0], f1[0]);
+    swing_axis(g, x, leg, 1, td[1], f0[1], f1[1]);
     /* the height is at most XGO_GAIT_MAX_HEIGHT_UM < 2^16 (lift_foot) */
     g->foot_um[leg].z = mul_q_u16(wt->s2, (uint32_t)g->swing_height_um[leg], 30u);
 }

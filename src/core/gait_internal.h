@@ -59,6 +59,8 @@ typedef struct gait_tick_s {
     /* the table in use and the produced velocity (ramp stage) */
     const gait_table_t *t;
     uint32_t hx, hy;     /* half-stride budget, um */
+    int32_t reach_y;     /* y reach the planted feet grow to (transient_rate's
+                            pass; 0: ramp_velocity grew them already) */
     int32_t vel[2];      /* produced vx, vy */
     int32_t w_q24;       /* produced yaw rate, rad/s Q24 */
 #if XGO_CORE_NARROW_CPU

@@ -99,11 +99,13 @@ XGO_ALWAYS_INLINE void xgo_regs_set_joints(xgo_regs_t *r, const xgo_profile_t *p
 XGO_ALWAYS_INLINE void xgo_regs_set_inertial(xgo_regs_t *r, const int16_t accel[3], const int16_t gyro[3])
 {
 #if XGO_WITH_INERTIAL
-    unsigned i;
-    for (i = 0; i < 3; i++) { /* six halfwords: less than two memcpy calls, every tick */
-        r->accel[i] = accel[i];
-        r->gyro[i] = gyro[i];
-    }
+    /* six halfwords, every tick: six moves (no loop, no memcpy calls) */
+    r->accel[0] = accel[0];
+    r->accel[1] = accel[1];
+    r->accel[2] = accel[2];
+    r->gyro[0] = gyro[0];
+    r->gyro[1] = gyro[1];
+    r->gyro[2] = gyro[2];
 #else /* without the model they are 0 (xgo/config.h) */
     (void)r;
     (void)accel;
