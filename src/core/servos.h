@@ -44,8 +44,7 @@ void xgo_servos_tick(xgo_servos_t *s, int32_t max_step_mdeg);
 /* Both in one pass: xgo_servos_set_targets, then xgo_servos_tick (the
  * control tick's form). Returns 1 when every joint is now exactly at
  * target_mdeg (none limited, none short of it), 0 when one is not, so the
- * caller need not compare the twelve angles; -1 (not known) on a Cortex-M0
- * with every joint loaded, where that compare costs less than the flag. */
+ * caller need not compare the twelve angles (exact on every core). */
 int xgo_servos_follow(xgo_servos_t *s, const int32_t target_mdeg[XGO_SERVO_COUNT], int32_t max_step_mdeg);
 
 /* Unload / load the joints in mask (bit i = joint i). Loading a joint sets
