@@ -394,6 +394,169 @@ static void test_rotation_without_yaw_holds_the_sines(void)
         }
     }
 }
+
+/* ------------------------------------------------------------ exactness */
+
+/* The model as inertial.h states it, every product the rounded 64-bit one
+ * and no shortcut: the reference the tick's fast paths (the narrow cores'
+ * pieces, 1 g's products as shifts, the 32-bit clamp) must equal bit for
+ * bit. */
+typedef struct ref_inertial_s {
+    int64_t pos[2][3];
+    int32_t att[3], acc_q8[3], gyro_q8[3];
+    int history;
+} ref_inertial_t;
+
+static int32_t ref_mul(int64_t a, int32_t c)
+{
+    return (int32_t)((a * c + (1 << 29)) >> 30);
+}
+
+static int64_t ref_clamp(int64_t v, int64_t lim)
+{
+    return v > lim ? lim : (v < -lim ? -lim : v);
+}
+
+static int16_t ref_lsb(int32_t q8)
+{
+    const int32_t v = (q8 >= 0 ? q8 + 128 : q8 - 127) >> 8; /* inertial.c's rounding */
+    return (int16_t)(v > 32767 ? 32767 : (v < -32768 ? -32768 : v));
+}
+
+static void ref_filter(int32_t state[3], const int32_t in[3], int16_t out[3])
+{
+    unsigned i;
+    for (i = 0; i < 3; i++) {
+        state[i] += (in[i] - state[i]) >> XGO_INERTIAL_FILTER_SHIFT;
+        out[i] = ref_lsb(state[i]);
+    }
+}
+
+static void ref_tick(ref_inertial_t *r, const int64_t body[3], const xgo_q30_t hsc[2],
+                     const int32_t att[3], int16_t accel[3], int16_t gyro[3])
+{
+    const int64_t accel_q16 = ((int64_t)XGO_TICK_HZ * XGO_TICK_HZ * XGO_ACCEL_LSB_PER_G * 65536 +
+                               XGO_GRAVITY_UM_S2 / 2) / XGO_GRAVITY_UM_S2;
+    const int64_t gyro_q16 = ((int64_t)XGO_TICK_HZ * XGO_GYRO_LSB_PER_10_DEG_S * 256 * 65536 + 5000) /
+                             10000;
+    int32_t a[3], d[3], f[3], w[3], hx, hy, hz, x1, z1, yaw_cp;
+    xgo_q30_t sr, cr, sp, cp;
+    unsigned i;
+    if (r->history == 0) {
+        memcpy(r->pos[0], body, sizeof r->pos[0]);
+        memcpy(r->att, att, sizeof r->att);
+    }
+    if (r->history < 2) {
+        memcpy(r->pos[1], r->pos[0], sizeof r->pos[1]);
+        r->history++;
+    }
+    for (i = 0; i < 3; i++) {
+        const int64_t d2 = ref_clamp(body[i] - 2 * r->pos[0][i] + r->pos[1][i], 1 << 20);
+        a[i] = (int32_t)((d2 * accel_q16 + 32768) >> 16);
+        d[i] = xgo_wrap_mdeg(att[i] - r->att[i]);
+        r->pos[1][i] = r->pos[0][i];
+        r->pos[0][i] = body[i];
+        r->att[i] = att[i];
+    }
+    xgo_sincos(xgo_mdeg_to_bam(att[0]), &sr, &cr);
+    xgo_sincos(xgo_mdeg_to_bam(att[1]), &sp, &cp);
+    hx = ref_mul(a[0], hsc[1]) + ref_mul(a[1], hsc[0]);
+    hy = ref_mul(a[1], hsc[1]) - ref_mul(a[0], hsc[0]);
+    hz = a[2] + XGO_ACCEL_LSB_PER_G * 256;
+    x1 = ref_mul(hx, cp) - ref_mul(hz, sp);
+    z1 = ref_mul(hx, sp) + ref_mul(hz, cp);
+    f[0] = x1;
+    f[1] = ref_mul(hy, cr) + ref_mul(z1, sr);
+    f[2] = ref_mul(z1, cr) - ref_mul(hy, sr);
+    yaw_cp = ref_mul(d[2], cp);
+    w[0] = d[0] - ref_mul(d[2], sp);
+    w[1] = ref_mul(d[1], cr) + ref_mul(yaw_cp, sr);
+    w[2] = ref_mul(yaw_cp, cr) - ref_mul(d[1], sr);
+    for (i = 0; i < 3; i++) {
+        w[i] = (int32_t)((ref_clamp(w[i], 1 << 18) * gyro_q16 + 32768) >> 16);
+    }
+    ref_filter(r->acc_q8, f, accel);
+    ref_filter(r->gyro_q8, w, gyro);
+}
+
+/* A change of v drawn at one of several sizes, so each path's range and
+ * its edges are met: none, a few units, up to 2^14 (the rates' 16-bit
+ * pieces), up to 2^20 (the 10-bit pieces), beyond. */
+static int32_t ref_step(uint32_t *seed)
+{
+    const uint32_t r = lcg_next(seed);
+    const int32_t v = (int32_t)lcg_next(seed);
+    switch (r % 8u) {
+    case 0:
+    case 1:
+        return 0;
+    case 2:
+        return v >> 26;
+    case 3:
+        return v >> 17;
+    case 4:
+        return (v >> 31) + ((r & 16u) ? (1 << 14) : -(1 << 14)); /* an edge */
+    case 5:
+        return v >> 11;
+    case 6:
+        return v >> 8;
+    default:
+        return v >> 2;
+    }
+}
+
+/* 2,000,000 ticks of random motion - held still, walking-sized and wild
+ * steps of position and attitude, constant and changing height, every
+ * heading - give the accelerometer and gyroscope the reference's values
+ * exactly, and the filters its states. */
+static void test_tick_equals_the_wide_product_model(void)
+{
+    uint32_t seed = 2718u;
+    unsigned run, k;
+    for (run = 0; run < 2000; ++run) {
+        xgo_inertial_t s;
+        ref_inertial_t r;
+        int64_t body[3] = {0, 0, 97600 * 256};
+        int64_t vel[3] = {0, 0, 0};
+        int32_t att[3], rate[3];
+        memset(&r, 0, sizeof r);
+        r.acc_q8[2] = XGO_ACCEL_LSB_PER_G * 256;
+        xgo_inertial_init(&s);
+        att[0] = (int32_t)(lcg_next(&seed) % 360000u) - 180000;
+        att[1] = (int32_t)(lcg_next(&seed) % 360000u) - 180000;
+        att[2] = (int32_t)(lcg_next(&seed) % 360000u) - 180000;
+        rate[0] = ref_step(&seed);
+        rate[1] = ref_step(&seed);
+        rate[2] = ref_step(&seed);
+        for (k = 0; k < 1000; ++k) {
+            const xgo_bam_t h = lcg_next(&seed);
+            xgo_q30_t hsc[2];
+            int16_t accel[3], gyro[3];
+            unsigned i;
+            if (k % 50u == 0u) { /* a new motion: held (zeros) or walking-sized or wild */
+                for (i = 0; i < 3; i++) {
+                    vel[i] = (int64_t)ref_step(&seed) * ((run & 1u) ? 1 : 64);
+                    rate[i] = ref_step(&seed);
+                }
+            }
+            for (i = 0; i < 3; i++) {
+                body[i] += vel[i] + ((k % 7u == 0u) ? ref_step(&seed) : 0);
+                att[i] = xgo_wrap_mdeg(att[i] + rate[i] + ((k % 5u == 0u) ? ref_step(&seed) : 0));
+            }
+            xgo_sincos(h, &hsc[0], &hsc[1]);
+            if (k % 3u == 0u) { /* a heading's sine and cosine as odometry keeps them, or any Q30 */
+                hsc[0] = (int32_t)(lcg_next(&seed) % 2147483649u) - (1 << 30);
+            }
+            xgo_inertial_tick_sc(&s, body, hsc, att);
+            ref_tick(&r, body, hsc, att, accel, gyro);
+            if (memcmp(accel, s.accel, sizeof accel) != 0 || memcmp(gyro, s.gyro, sizeof gyro) != 0 ||
+                memcmp(r.acc_q8, s.accel_q8, sizeof r.acc_q8) != 0 ||
+                memcmp(r.gyro_q8, s.gyro_q8, sizeof r.gyro_q8) != 0) {
+                TEST_FAIL_MESSAGE("the inertial tick differs from the wide-product model");
+            }
+        }
+    }
+}
 #endif
 
 int main(void)
@@ -412,6 +575,7 @@ int main(void)
     RUN_TEST(test_body_position_is_the_rounded_turn);
     RUN_TEST(test_rotation_without_yaw_holds_the_sines);
     RUN_TEST(test_large_products_are_the_rounded_wide_product);
+    RUN_TEST(test_tick_equals_the_wide_product_model);
 #endif
     return UNITY_END();
 }

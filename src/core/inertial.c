@@ -22,12 +22,29 @@
 #define GYRO_Q16                                                                                  \
     ((int32_t)(((uint64_t)XGO_TICK_HZ * XGO_GYRO_LSB_PER_10_DEG_S * 256u * 65536u + 5000u) /     \
                10000u))
+/* 1 g in LSB * 256: 2^22 */
+#define ONE_G_Q8 (XGO_ACCEL_LSB_PER_G * 256)
 /* Second differences beyond this (about 100 g at 500 Hz) saturate anyway. */
 #define D2_LIMIT_Q8 (1 << 20)
 
 static int32_t clamp32(int64_t v, int32_t lim)
 {
     return v > lim ? lim : (v < -lim ? -lim : (int32_t)v);
+}
+
+/* clamp32 of a second difference. On a narrow core, where each 64-bit
+ * compare is a few instructions, the value's fitting 32 bits (nearly
+ * always: 8 m per tick^2) is one compare, and then it is clamped in 32
+ * bits: the same value. */
+static int32_t clamp_d2(int64_t v)
+{
+#if XGO_CORE_NARROW_CPU
+    const int32_t lo = (int32_t)(uint32_t)(uint64_t)v;
+    if ((int64_t)lo == v) {
+        return lo > D2_LIMIT_Q8 ? D2_LIMIT_Q8 : (lo < -D2_LIMIT_Q8 ? -D2_LIMIT_Q8 : lo);
+    }
+#endif
+    return clamp32(v, D2_LIMIT_Q8);
 }
 
 static int16_t to_lsb(int32_t q8)
@@ -55,6 +72,22 @@ XGO_ALWAYS_INLINE int32_t mul_q30(int32_t a, xgo_q30_t c) /* inline: 18 calls a 
     }
 #endif
     return (int32_t)((xgo_mul_wide(a, c) + (1 << 29)) >> 30);
+}
+
+/* mul_q30 for the body rates' factors, angle changes per tick (tens of
+ * mdeg while walking, turning, pitching). On a narrow core, for |a| < 2^14,
+ * from c's 16-bit pieces, c = ch 2^16 + cl (|ch| <= 2^14, 0 <= cl < 2^16),
+ * |a cl| + 2^29 < 2^31 and
+ *   floor((a c + 2^29) / 2^30) = floor((a ch + floor((a cl + 2^29) / 2^16)) / 2^14):
+ * exact, two MULS instead of three; larger a take mul_q30. */
+XGO_ALWAYS_INLINE int32_t mul_q30_rate(int32_t a, xgo_q30_t c) /* inline: 6 calls a tick */
+{
+#if XGO_CORE_NARROW_CPU
+    if ((uint32_t)a + (1u << 14) < (1u << 15)) {
+        return (a * (c >> 16) + ((a * (c & 0xFFFF) + (1 << 29)) >> 16)) >> 14;
+    }
+#endif
+    return mul_q30(a, c);
 }
 
 /* mul_q30 for a factor that may be large: the vertical specific force
@@ -109,7 +142,7 @@ static void filter(int32_t state[3], const int32_t input[3], int16_t out[3])
 void xgo_inertial_init(xgo_inertial_t *s)
 {
     memset(s, 0, sizeof *s);
-    s->accel_q8[2] = XGO_ACCEL_LSB_PER_G * 256;
+    s->accel_q8[2] = ONE_G_Q8;
     s->accel[2] = XGO_ACCEL_LSB_PER_G;
     xgo_sincos(xgo_mdeg_to_bam(0), &s->trig_q30[0][0], &s->trig_q30[0][1]);
     xgo_sincos(xgo_mdeg_to_bam(0), &s->trig_q30[1][0], &s->trig_q30[1][1]);
@@ -145,14 +178,24 @@ static void specific_force(const int32_t a_q8[3], const xgo_q30_t heading_sc[2],
                            const attitude_trig_t *t, int32_t f[3])
 {
     const xgo_q30_t sh = heading_sc[0], ch = heading_sc[1];
-    int32_t hx, hy, hz, x1, z1;
+    int32_t hx, hy, hz, x1, z1, gx, gz;
     /* Rz(-heading): world -> the body's heading frame */
     hx = mul_q30(a_q8[0], ch) + mul_q30(a_q8[1], sh);
     hy = mul_q30(a_q8[1], ch) - mul_q30(a_q8[0], sh);
-    hz = a_q8[2] + XGO_ACCEL_LSB_PER_G * 256;
-    /* Ry(-pitch), then Rx(-roll); hz and z1 hold the 1 g */
-    x1 = mul_q30(hx, t->cp) - xgo_inertial_mul_q30(hz, t->sp);
-    z1 = mul_q30(hx, t->sp) + xgo_inertial_mul_q30(hz, t->cp);
+    hz = a_q8[2] + ONE_G_Q8;
+    /* Ry(-pitch), then Rx(-roll); hz and z1 hold the 1 g. At a constant
+     * height (walking, standing) hz is exactly 1 g = 2^22, whose products
+     * are shifts: (2^22 c + 2^29) >> 30 = (c + 2^7) >> 8; on a narrow core
+     * two calls of four MULS less (elsewhere a product is one instruction). */
+    if (XGO_CORE_NARROW_CPU && hz == ONE_G_Q8) {
+        gx = (t->sp + 128) >> 8;
+        gz = (t->cp + 128) >> 8;
+    } else {
+        gx = xgo_inertial_mul_q30(hz, t->sp);
+        gz = xgo_inertial_mul_q30(hz, t->cp);
+    }
+    x1 = mul_q30(hx, t->cp) - gx;
+    z1 = mul_q30(hx, t->sp) + gz;
     f[0] = x1;
     f[1] = mul_q30(hy, t->cr) + xgo_inertial_mul_q30(z1, t->sr);
     f[2] = xgo_inertial_mul_q30(z1, t->cr) - mul_q30(hy, t->sr);
@@ -161,10 +204,10 @@ static void specific_force(const int32_t a_q8[3], const xgo_q30_t heading_sc[2],
 /* Body rates from the Euler rates (mdeg per tick), LSB * 256. */
 static void body_rates(const int32_t d_mdeg[3], const attitude_trig_t *t, int32_t w[3])
 {
-    const int32_t yaw_cp = mul_q30(d_mdeg[2], t->cp);
-    w[0] = d_mdeg[0] - mul_q30(d_mdeg[2], t->sp);
-    w[1] = mul_q30(d_mdeg[1], t->cr) + mul_q30(yaw_cp, t->sr);
-    w[2] = mul_q30(yaw_cp, t->cr) - mul_q30(d_mdeg[1], t->sr);
+    const int32_t yaw_cp = mul_q30_rate(d_mdeg[2], t->cp);
+    w[0] = d_mdeg[0] - mul_q30_rate(d_mdeg[2], t->sp);
+    w[1] = mul_q30_rate(d_mdeg[1], t->cr) + mul_q30_rate(yaw_cp, t->sr);
+    w[2] = mul_q30_rate(yaw_cp, t->cr) - mul_q30_rate(d_mdeg[1], t->sr);
 }
 
 void xgo_inertial_tick(xgo_inertial_t *s, const int64_t body_q8[3], xgo_bam_t heading,
@@ -192,7 +235,7 @@ void xgo_inertial_tick_sc(xgo_inertial_t *s, const int64_t body_q8[3], const xgo
     /* the history moves on as it is used (no copies after) */
     for (i = 0; i < 3; i++) {
         const int64_t d2 = body_q8[i] - 2 * s->pos_q8[0][i] + s->pos_q8[1][i];
-        a_q8[i] = scale_q16(clamp32(d2, D2_LIMIT_Q8), ACCEL_Q16);
+        a_q8[i] = scale_q16(clamp_d2(d2), ACCEL_Q16);
         d[i] = att_mdeg[i] - s->att_mdeg[i];
         if (d[i] < -180000 || d[i] >= 180000) { /* else already an angle: no call */
             d[i] = xgo_wrap_mdeg(d[i]);
