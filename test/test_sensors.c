@@ -11,6 +11,7 @@
 #include "unity.h"
 #include "xgo/config.h"
 #include "sensors.h"
+#include "fixed.h" /* xgo_wrap_mdeg, xgo_sat32: the reference below */
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -154,12 +155,65 @@ static void test_is_percent_is_the_percent_and_nothing_else(void)
     }
 }
 
+/* Each angle is the sum of its parts clamped to int32 and wrapped into
+ * [-180000, 180000) (sensors.c sums them in 32 bits when they fit): at the
+ * wrap's edges, at int32's (where the 32-bit sum overflows) and for
+ * 200,000 random angles, with the ground's tilt and the integrated yaw. */
+static void test_attitude_is_the_clamped_sum_wrapped(void)
+{
+    static const int32_t edge[] = {0, 1, -1, 179999, 180000, -180000, -180001, 359999, -360000,
+                                   2147483647, -2147483647 - 1, 2147483647 - 44999, -2147483647 + 44999,
+                                   1073741824, -1073741824};
+    static const int32_t tilt[] = {0, 45000, -45000, 1};
+    uint32_t seed = 31u;
+    unsigned i, j, k;
+    for (k = 0; k < 200000u + 4u * 15u * 15u; ++k) {
+        int32_t roll, pitch, yaw, rate;
+        int64_t acc;
+        if (k < 4u * 15u * 15u) {
+            i = k % 15u;
+            j = (k / 15u) % 15u;
+            roll = edge[i];
+            pitch = edge[j];
+            yaw = edge[(i + j) % 15u];
+            rate = (int32_t)(k / 225u) * 60000000 - 90000000;
+#if XGO_WITH_EMULATOR_INPUTS
+            xgo_imu_set_ground_tilt(&imu, tilt[k / 225u], tilt[(k / 225u + 1u) % 4u]);
+#endif
+        } else {
+            seed = seed * 1664525u + 1013904223u;
+            roll = (int32_t)seed >> (seed % 16u);
+            seed = seed * 1664525u + 1013904223u;
+            pitch = (int32_t)seed >> (seed % 16u);
+            seed = seed * 1664525u + 1013904223u;
+            yaw = (int32_t)seed >> (seed % 16u);
+            seed = seed * 1664525u + 1013904223u;
+            rate = (int32_t)seed >> 4;
+#if XGO_WITH_EMULATOR_INPUTS
+            xgo_imu_set_ground_tilt(&imu, (int32_t)(seed % 90001u) - 45000, (int32_t)(seed % 80001u) - 40000);
+#endif
+        }
+        imu_ticks(1, roll, pitch, yaw, rate);
+        acc = imu.yaw_acc / (int32_t)XGO_TICK_HZ;
+#if XGO_WITH_EMULATOR_INPUTS
+        TEST_ASSERT_EQUAL_INT32(xgo_wrap_mdeg(xgo_sat32((int64_t)roll + imu.ground_roll_mdeg)), imu.roll_mdeg);
+        TEST_ASSERT_EQUAL_INT32(xgo_wrap_mdeg(xgo_sat32((int64_t)pitch + imu.ground_pitch_mdeg)), imu.pitch_mdeg);
+#else
+        (void)tilt;
+        TEST_ASSERT_EQUAL_INT32(xgo_wrap_mdeg(roll), imu.roll_mdeg);
+        TEST_ASSERT_EQUAL_INT32(xgo_wrap_mdeg(pitch), imu.pitch_mdeg);
+#endif
+        TEST_ASSERT_EQUAL_INT32(xgo_wrap_mdeg(xgo_sat32(acc + yaw)), imu.yaw_mdeg);
+    }
+}
+
 int main(void)
 {
     UNITY_BEGIN();
     RUN_TEST(test_yaw_integrates_the_rate_exactly_and_wraps);
     RUN_TEST(test_is_percent_is_the_percent_and_nothing_else);
     RUN_TEST(test_roll_and_pitch_are_body_plus_ground_tilt);
+    RUN_TEST(test_attitude_is_the_clamped_sum_wrapped);
     RUN_TEST(test_a_shove_rings_down_like_the_damped_spring);
     RUN_TEST(test_battery_drains_at_the_documented_rates);
     return UNITY_END();

@@ -75,6 +75,9 @@ void xgo_imu_push(xgo_imu_t *imu, int32_t roll_mdeg, int32_t pitch_mdeg)
 static void push_tick(xgo_imu_t *imu)
 {
     unsigned axis;
+    if ((imu->push_q10[0] | imu->push_q10[1] | imu->push_rate_q10[0] | imu->push_rate_q10[1]) == 0) {
+        return; /* no shove ringing (nearly every tick): one test, not a loop */
+    }
     for (axis = 0; axis < 2; axis++) {
         int32_t *x = &imu->push_q10[axis], *v = &imu->push_rate_q10[axis];
         if ((*x | *v) == 0) {
@@ -124,16 +127,29 @@ void xgo_imu_reset_yaw(xgo_imu_t *imu)
     imu->yaw_acc = 0;
 }
 
-/* Wrap an angle in mdeg into [-180000, 180000). */
-/* a wrapped into [-180000, 180000): the sum of a few int32 angles, clamped to
+/* a + b wrapped into [-180000, 180000): the sum of int32 angles, clamped to
  * int32 first (angles beyond +-2147483 degrees are no angles a tick makes),
- * so no 64-bit remainder is needed. */
-static int32_t wrap_mdeg(int64_t a)
+ * so no 64-bit remainder is needed. Inline: a sum already an angle (the
+ * common case) makes no call. On a 32-bit core the sum is formed in 32
+ * bits: one of the two is small (under 2^20: the tilt a ramp and a shove
+ * add, or the integrated yaw), so a sum that overflowed lies near -2^31 or
+ * 2^31, never in the range, and takes the exact path; no 64-bit value
+ * either. */
+XGO_ALWAYS_INLINE int32_t wrap_sum(int32_t a, int32_t b)
 {
-    if (a >= -180000 && a < 180000) {
-        return (int32_t)a; /* already in range (the common case): no two calls */
+#if XGO_CORE_DIV64_NATIVE
+    const int64_t s = (int64_t)a + b;
+    if (s >= -180000 && s < 180000) {
+        return (int32_t)s;
     }
-    return xgo_wrap_mdeg(xgo_sat32(a));
+    return xgo_wrap_mdeg(xgo_sat32(s));
+#else
+    const int32_t s = (int32_t)((uint32_t)a + (uint32_t)b);
+    if ((uint32_t)s + 180000u < 360000u) {
+        return s;
+    }
+    return xgo_wrap_mdeg(xgo_sat32((int64_t)a + b));
+#endif
 }
 
 /* yaw_acc wraps at one turn: 360 degrees in mdeg * XGO_TICK_HZ. */
@@ -180,7 +196,7 @@ void xgo_imu_tick(xgo_imu_t *imu, int32_t body_roll_mdeg, int32_t body_pitch_mde
     imu->yaw_acc = a32;
     acc = yaw_acc_mdeg(a32);
     push_tick(imu);
-    imu->roll_mdeg = wrap_mdeg((int64_t)body_roll_mdeg + extra_roll(imu));
-    imu->pitch_mdeg = wrap_mdeg((int64_t)body_pitch_mdeg + extra_pitch(imu));
-    imu->yaw_mdeg = wrap_mdeg((int64_t)acc + body_yaw_mdeg);
+    imu->roll_mdeg = wrap_sum(body_roll_mdeg, extra_roll(imu));
+    imu->pitch_mdeg = wrap_sum(body_pitch_mdeg, extra_pitch(imu));
+    imu->yaw_mdeg = wrap_sum(acc, body_yaw_mdeg);
 }
