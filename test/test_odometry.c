@@ -538,6 +538,41 @@ static void test_odometry_arithmetic_is_the_same_on_every_core(void)
     TEST_ASSERT_EQUAL_HEX32(ODOMETRY_DIGEST, h);
 }
 
+/* The fit's cross product (xgo_odometry_cross: on a narrow core from the
+ * change b - a when it and a are small; the _narrow build of this suite
+ * takes that form) is the 64-bit one: at the form's edges (the change at
+ * +-2^11, a at +-2^19, each just inside and outside) and for 2,000,000
+ * random pairs, small changes and large. */
+static void test_cross_product_is_the_wide_one(void)
+{
+    static const int32_t a_edge[] = {0, 1, -1, 524287, -524288, 524288, -524289, 300000, -2147483647 - 1,
+                                     2147483647};
+    static const int32_t e_edge[] = {0, 1, -1, 2047, -2048, 2048, -2049, 7, 8191, -8192};
+    uint32_t seed = 77u;
+    unsigned i, j, k;
+    for (i = 0; i < 10u * 10u * 10u * 10u; i++) {
+        const int32_t ax = a_edge[i % 10u], ay = a_edge[(i / 10u) % 10u];
+        const int32_t bx = (int32_t)((uint32_t)ax + (uint32_t)e_edge[(i / 100u) % 10u]);
+        const int32_t by = (int32_t)((uint32_t)ay + (uint32_t)e_edge[i / 1000u]);
+        TEST_ASSERT_TRUE(xgo_odometry_cross(bx, by, ax, ay) == (int64_t)bx * ay - (int64_t)by * ax);
+    }
+    for (k = 0; k < 2000000u; k++) {
+        int32_t v[4];
+        for (j = 0; j < 4u; j++) {
+            seed = seed * 1664525u + 1013904223u;
+            v[j] = (int32_t)seed >> (j < 2u ? 11u + (seed % 4u) : 19u - (k % 4u));
+        }
+        v[2] = (int32_t)((uint32_t)v[2] * (k % 3u == 0u ? 2u : 1u)); /* a beyond 2^19 now and then */
+        {
+            const int32_t ax = v[2], ay = v[3];
+            const int32_t bx = (int32_t)((uint32_t)ax + (uint32_t)v[0]), by = (int32_t)((uint32_t)ay + (uint32_t)v[1]);
+            if (xgo_odometry_cross(bx, by, ax, ay) != (int64_t)bx * ay - (int64_t)by * ax) {
+                TEST_FAIL_MESSAGE("xgo_odometry_cross differs from the 64-bit cross product");
+            }
+        }
+    }
+}
+
 /* Feet in the air need not be measured (odometry.h): an odometry given
  * only the planted feet (and some others), garbage for the rest, that
  * measures them when xgo_odometry_needs_all asks (and last tick's through
@@ -643,6 +678,7 @@ int main(void)
     RUN_TEST(test_a_push_tips_the_imu_and_dies_away);
     RUN_TEST(test_board_write_takes_the_register_write_path_with_its_source);
     RUN_TEST(test_odometry_arithmetic_is_the_same_on_every_core);
+    RUN_TEST(test_cross_product_is_the_wide_one);
     RUN_TEST(test_feet_in_the_air_measured_only_when_needed);
     return UNITY_END();
 }

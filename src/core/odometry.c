@@ -60,6 +60,36 @@ static int32_t div_small(int32_t v, unsigned n)
     }
 }
 
+/* bx ay - by ax, exactly. On a narrow core, when b is a small change of a
+ * (planted feet from one tick to the next: |b - a| < 2^11 um) and |a| <
+ * 2^19 (a planted pair's spread: always), as (bx - ax) ay - (by - ay) ax:
+ * the ax ay terms cancel, each product is within +-2^30 and their
+ * difference within int32, two MULS instead of two wide products. (The
+ * differences wrap as unsigned: one that overflowed is never small while a
+ * is.) Elsewhere the wide products. */
+XGO_ALWAYS_INLINE int64_t cross_of(int32_t bx, int32_t by, int32_t ax, int32_t ay)
+{
+#if XGO_CORE_NARROW_CPU
+    const int32_t ex = (int32_t)((uint32_t)bx - (uint32_t)ax), ey = (int32_t)((uint32_t)by - (uint32_t)ay);
+    if ((uint32_t)ex + (1u << 11) < (1u << 12) && (uint32_t)ey + (1u << 11) < (1u << 12) &&
+        (uint32_t)ax + (1u << 19) < (1u << 20) && (uint32_t)ay + (1u << 19) < (1u << 20)) {
+        return ex * ay - ey * ax;
+    }
+#endif
+    return xgo_mul_wide(bx, ay) - xgo_mul_wide(by, ax);
+}
+
+int64_t xgo_odometry_cross(int32_t bx, int32_t by, int32_t ax, int32_t ay)
+{
+    return cross_of(bx, by, ax, ay);
+}
+
+/* The lowest leg in a non-empty contact mask. */
+static unsigned first_leg(unsigned mask)
+{
+    return (mask & 1u) ? 0u : (mask & 2u) ? 1u : (mask & 4u) ? 2u : 3u;
+}
+
 /* The rigid motion (rotation dyaw, translation d) that maps this tick's
  * planted feet b onto last tick's a: a = R(dyaw) b + d, least squares. */
 static void fit_motion(const xgo_odometry_t *o, const xgo_vec3_t feet_um[XGO_LEG_COUNT],
@@ -69,30 +99,40 @@ static void fit_motion(const xgo_odometry_t *o, const xgo_vec3_t feet_um[XGO_LEG
     int64_t cross = 0, dot = 0;
     xgo_q30_t s, c;
     unsigned leg;
-    for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
-        if (common & (1u << leg)) {
-            sa[0] += o->prev_um[leg].x;
-            sa[1] += o->prev_um[leg].y;
-            sb[0] += feet_um[leg].x;
-            sb[1] += feet_um[leg].y;
+    if (n == 2u) {
+        /* A trot's planted pair (every walking tick), legs i and j: centred
+         * and scaled by n, the first foot's coordinates are p_i - p_j (2 p_i
+         * - (p_i + p_j)) and the second's their negation, so its terms equal
+         * the first's - taken twice, four wide products less, and no loops
+         * over the legs. */
+        const unsigned i = first_leg(common), j = first_leg(common & (common - 1u));
+        const xgo_vec3_t *pi = &o->prev_um[i], *pj = &o->prev_um[j];
+        const int32_t ax = pi->x - pj->x, ay = pi->y - pj->y;
+        const int32_t bx = feet_um[i].x - feet_um[j].x, by = feet_um[i].y - feet_um[j].y;
+        sa[0] = pi->x + pj->x;
+        sa[1] = pi->y + pj->y;
+        sb[0] = feet_um[i].x + feet_um[j].x;
+        sb[1] = feet_um[i].y + feet_um[j].y;
+        cross = 2 * cross_of(bx, by, ax, ay);
+        dot = 2 * (xgo_mul_wide(bx, ax) + xgo_mul_wide(by, ay));
+    } else {
+        for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
+            if (common & (1u << leg)) {
+                sa[0] += o->prev_um[leg].x;
+                sa[1] += o->prev_um[leg].y;
+                sb[0] += feet_um[leg].x;
+                sb[1] += feet_um[leg].y;
+            }
         }
-    }
-    /* centred coordinates, scaled by n so they stay integers. Two feet (a
-     * trot's planted pair, every walking tick): the second foot's centred
-     * coordinates are the first's negated (2 p1 - (p1 + p2) = p1 - p2), so
-     * its terms equal the first's - taken twice, four wide products less. */
-    for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
-        if (common & (1u << leg)) {
-            const int32_t ax = (int32_t)n * o->prev_um[leg].x - sa[0];
-            const int32_t ay = (int32_t)n * o->prev_um[leg].y - sa[1];
-            const int32_t bx = (int32_t)n * feet_um[leg].x - sb[0];
-            const int32_t by = (int32_t)n * feet_um[leg].y - sb[1];
-            cross += xgo_mul_wide(bx, ay) - xgo_mul_wide(by, ax);
-            dot += xgo_mul_wide(bx, ax) + xgo_mul_wide(by, ay);
-            if (n == 2u) {
-                cross *= 2;
-                dot *= 2;
-                break;
+        /* centred coordinates, scaled by n so they stay integers */
+        for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
+            if (common & (1u << leg)) {
+                const int32_t ax = (int32_t)n * o->prev_um[leg].x - sa[0];
+                const int32_t ay = (int32_t)n * o->prev_um[leg].y - sa[1];
+                const int32_t bx = (int32_t)n * feet_um[leg].x - sb[0];
+                const int32_t by = (int32_t)n * feet_um[leg].y - sb[1];
+                cross += cross_of(bx, by, ax, ay);
+                dot += xgo_mul_wide(bx, ax) + xgo_mul_wide(by, ay);
             }
         }
     }

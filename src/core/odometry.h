@@ -68,6 +68,11 @@ static inline uint8_t xgo_odometry_unmeasured(const xgo_odometry_t *o)
 void xgo_odometry_set_prev(xgo_odometry_t *o, unsigned leg, const xgo_vec3_t *foot_um);
 void xgo_odometry_update_measured(xgo_odometry_t *o, const xgo_vec3_t feet_um[XGO_LEG_COUNT],
                                   uint8_t contact, uint8_t measured);
+
+/* bx ay - by ax as the fit computes it (a 32-bit form on a narrow core for
+ * a small change of a small a): exposed for test_odometry, which checks it
+ * against the 64-bit products. */
+int64_t xgo_odometry_cross(int32_t bx, int32_t by, int32_t ax, int32_t ay);
 #else
 static inline void xgo_odometry_update(xgo_odometry_t *o,
                                        const xgo_vec3_t feet_um[XGO_LEG_COUNT], uint8_t contact)
