@@ -84,10 +84,12 @@ int64_t xgo_odometry_cross(int32_t bx, int32_t by, int32_t ax, int32_t ay)
     return cross_of(bx, by, ax, ay);
 }
 
-/* The lowest leg in a non-empty contact mask. */
+/* The lowest leg in a non-empty contact mask: a table lookup, not a chain
+ * of tests (twice a walking tick). */
 static unsigned first_leg(unsigned mask)
 {
-    return (mask & 1u) ? 0u : (mask & 2u) ? 1u : (mask & 4u) ? 2u : 3u;
+    static const uint8_t lowest[16] = {0, 0, 1, 0, 2, 0, 1, 0, 3, 0, 1, 0, 2, 0, 1, 0};
+    return lowest[mask & 0x0Fu];
 }
 
 /* The rigid motion (rotation dyaw, translation d) that maps this tick's
@@ -171,9 +173,11 @@ static int same_xy(const xgo_vec3_t a[XGO_LEG_COUNT], const xgo_vec3_t b[XGO_LEG
     return 1;
 }
 
+/* The planted feet in a contact mask (every tick): a table lookup. */
 static unsigned popcount4(uint8_t m)
 {
-    return (m & 1u) + ((m >> 1) & 1u) + ((m >> 2) & 1u) + ((m >> 3) & 1u);
+    static const uint8_t count[16] = {0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4};
+    return count[m & 0x0Fu];
 }
 
 int xgo_odometry_needs_all(const xgo_odometry_t *o, const xgo_vec3_t feet_um[XGO_LEG_COUNT],
