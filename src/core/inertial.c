@@ -130,7 +130,14 @@ static int32_t scale_q16(int32_t v, int32_t k)
 /* 2^20 (D2_LIMIT_Q8) * 417 and 2^18 (the rate clamp) * 2099 < 2^31 */
 typedef char xgo_inertial_scale_fits_[(ACCEL_Q16 >> 16) <= 2047 && (GYRO_Q16 >> 16) <= 8191 ? 1 : -1];
 
+/* Inline where registers are plenty (x86-64, a Cortex-M3: two calls a
+ * tick less); out of line on a narrow core, where inlining it cost more
+ * (a Cortex-M0's eight low registers). */
+#if XGO_CORE_NARROW_CPU
 static void filter(int32_t state[3], const int32_t input[3], int16_t out[3])
+#else
+XGO_ALWAYS_INLINE void filter(int32_t state[3], const int32_t input[3], int16_t out[3])
+#endif
 {
     unsigned i;
     for (i = 0; i < 3; i++) {
