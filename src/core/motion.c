@@ -663,10 +663,10 @@ static XGO_OWN_FRAME void measure_feet(xgo_motion_t *m, int contact_known, int a
         m->fk_later.pose = m->pose;
     }
 #endif
-    for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
-        low = machine[leg].z < low ? machine[leg].z : low;
-    }
-    if (!contact_known) {
+    if (!contact_known) { /* the lowest foot only then (not while walking) */
+        for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
+            low = machine[leg].z < low ? machine[leg].z : low;
+        }
         m->contact = 0;
         for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
             if (machine[leg].z <= low + 1000) {

@@ -43,6 +43,14 @@ XGO_ALWAYS_INLINE int64_t turn_round(xgo_q30_t a, int32_t x, xgo_q30_t b, int32_
     return round_shift64(xgo_mul_wide(a, x) - xgo_mul_wide(b, y), k);
 }
 
+/* xgo_sat32(v) inline for the value that fits (a tick's translation:
+ * always), the call only beyond: twice a walking tick. */
+XGO_ALWAYS_INLINE int32_t sat32_fit(int64_t v)
+{
+    const int32_t lo = (int32_t)(uint32_t)(uint64_t)v;
+    return (int64_t)lo == v ? lo : xgo_sat32(v);
+}
+
 /* v / n for the support sizes 2..4, without a library division on cores
  * that have none (3: multiply by 2^32 / 3, error below 1e-9 relative). */
 static int32_t div_small(int32_t v, unsigned n)
@@ -144,8 +152,8 @@ static void fit_motion(const xgo_odometry_t *o, const xgo_vec3_t feet_um[XGO_LEG
     {
         const int64_t rx = turn_round(c, sb[0], s, sb[1], 22u);
         const int64_t ry = turn_round(s, sb[0], -c, sb[1], 22u);
-        d_q8[0] = div_small(xgo_sat32(((int64_t)sa[0] * 256) - rx), n);
-        d_q8[1] = div_small(xgo_sat32(((int64_t)sa[1] * 256) - ry), n);
+        d_q8[0] = div_small(sat32_fit(((int64_t)sa[0] * 256) - rx), n);
+        d_q8[1] = div_small(sat32_fit(((int64_t)sa[1] * 256) - ry), n);
     }
 }
 
