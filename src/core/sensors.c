@@ -16,12 +16,6 @@ void xgo_battery_init(xgo_battery_t *b, uint8_t percent)
     b->charge_upct = (percent > 100 ? 100u : (uint32_t)percent) * UPCT_PER_PCT;
 }
 
-void xgo_battery_tick(xgo_battery_t *b, int walking)
-{
-    const uint32_t drain = walking ? XGO_BATTERY_WALK_UPCT_PER_TICK : XGO_BATTERY_IDLE_UPCT_PER_TICK;
-    b->charge_upct = b->charge_upct > drain ? b->charge_upct - drain : 0u;
-}
-
 uint8_t xgo_battery_percent(const xgo_battery_t *b)
 {
     const uint32_t c = b->charge_upct > FULL_UPCT ? FULL_UPCT : b->charge_upct;

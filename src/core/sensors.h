@@ -37,7 +37,12 @@ extern "C" {
 #define XGO_BATTERY_WALK_UPCT_PER_TICK XGO_BATTERY_UPCT_PER_TICK_(60u)
 
 void xgo_battery_init(xgo_battery_t *b, uint8_t percent);
-void xgo_battery_tick(xgo_battery_t *b, int walking);
+/* One tick's drain (inline: every tick, three instructions' worth). */
+static inline void xgo_battery_tick(xgo_battery_t *b, int walking)
+{
+    const uint32_t drain = walking ? XGO_BATTERY_WALK_UPCT_PER_TICK : XGO_BATTERY_IDLE_UPCT_PER_TICK;
+    b->charge_upct = b->charge_upct > drain ? b->charge_upct - drain : 0u;
+}
 uint8_t xgo_battery_percent(const xgo_battery_t *b);
 
 /* 1: percent == xgo_battery_percent(b), by three compares: percent <= 100
