@@ -61,11 +61,13 @@ static int16_t to_lsb(int32_t q8)
  *   floor((a c + 2^29) / 2^30)
  *     = floor((a c2 + floor((a c1 + floor((a c0 + 2^29) / 2^10)) / 2^10)) / 2^10)
  * with every sum below 2^30 + 2^21 (int32): exact, so the same result as
- * the 64-bit product (tools/mcu/run.sh compares). */
+ * the 64-bit product (tools/mcu/run.sh compares). The range tests here
+ * are (a >> k) == (a >> 31), i.e. -2^k <= a < 2^k: two shifts, no
+ * constants to load on the M0. */
 XGO_ALWAYS_INLINE int32_t mul_q30(int32_t a, xgo_q30_t c) /* inline: 18 calls a tick */
 {
 #if XGO_CORE_NARROW_CPU
-    if ((uint32_t)a + (1u << 20) < (1u << 21)) {
+    if ((a >> 20) == (a >> 31)) {
         const int32_t low = (a * (c & 1023) + (1 << 29)) >> 10;
         const int32_t mid = (a * ((c >> 10) & 1023) + low) >> 10;
         return (a * (c >> 20) + mid) >> 10;
@@ -83,7 +85,7 @@ XGO_ALWAYS_INLINE int32_t mul_q30(int32_t a, xgo_q30_t c) /* inline: 18 calls a 
 XGO_ALWAYS_INLINE int32_t mul_q30_rate(int32_t a, xgo_q30_t c) /* inline: 6 calls a tick */
 {
 #if XGO_CORE_NARROW_CPU
-    if ((uint32_t)a + (1u << 14) < (1u << 15)) {
+    if ((a >> 14) == (a >> 31)) {
         return (a * (c >> 16) + ((a * (c & 0xFFFF) + (1 << 29)) >> 16)) >> 14;
     }
 #endif
@@ -103,7 +105,7 @@ XGO_ALWAYS_INLINE int32_t mul_q30_rate(int32_t a, xgo_q30_t c) /* inline: 6 call
 int32_t xgo_inertial_mul_q30(int32_t a, xgo_q30_t c)
 {
 #if XGO_CORE_NARROW_CPU
-    if ((uint32_t)a + (1u << 23) < (1u << 24)) {
+    if ((a >> 23) == (a >> 31)) {
         int32_t t = (a * (c & 255)) >> 8;
         t = (a * ((c >> 8) & 255) + t) >> 8;
         t = (a * ((c >> 16) & 255) + t) >> 8;
@@ -273,7 +275,7 @@ void xgo_inertial_tick_sc(xgo_inertial_t *s, const int64_t body_q8[3], const xgo
 static int64_t turn_q22(xgo_q30_t a, int32_t x, xgo_q30_t b, int32_t y)
 {
 #if XGO_CORE_NARROW_CPU
-    if ((uint32_t)x + (1u << 19) < (1u << 20) && (uint32_t)y + (1u << 19) < (1u << 20)) {
+    if ((x >> 19) == (x >> 31) && (y >> 19) == (y >> 31)) {
         int32_t u = (x * (a & 1023) - y * (b & 1023)) >> 10;
         u = (x * ((a >> 10) & 1023) - y * ((b >> 10) & 1023) + u) >> 10;
         return (x * (a >> 20) - y * (b >> 20) + u + 2) >> 2;

@@ -30,11 +30,13 @@ static int64_t round_shift64(int64_t v, unsigned n)
  * floor(((a1 x - b1 y) + floor((a0 x - b0 y) / 2^10)) / 2^10), every term
  * within int32, and floor((S + 2^(k-1)) / 2^k) = floor((floor(S / 2^20) +
  * 2^(k-21)) / 2^(k-20)): exact, six MULS instead of two wide products.
- * Elsewhere the wide products. test_odometry (_narrow) checks it. */
+ * Elsewhere the wide products. test_odometry (_narrow) checks it. The
+ * range tests are (v >> k) == (v >> 31), i.e. -2^k <= v < 2^k: two shifts,
+ * no constants to load on the M0. */
 XGO_ALWAYS_INLINE int64_t turn_round(xgo_q30_t a, int32_t x, xgo_q30_t b, int32_t y, unsigned k)
 {
 #if XGO_CORE_NARROW_CPU
-    if ((uint32_t)x + (1u << 19) < (1u << 20) && (uint32_t)y + (1u << 19) < (1u << 20)) {
+    if ((x >> 19) == (x >> 31) && (y >> 19) == (y >> 31)) {
         int32_t u = (x * (a & 1023) - y * (b & 1023)) >> 10;
         u = (x * ((a >> 10) & 1023) - y * ((b >> 10) & 1023) + u) >> 10;
         return (x * (a >> 20) - y * (b >> 20) + u + (1 << (k - 21u))) >> (k - 20u);
@@ -79,8 +81,8 @@ XGO_ALWAYS_INLINE int64_t cross_of(int32_t bx, int32_t by, int32_t ax, int32_t a
 {
 #if XGO_CORE_NARROW_CPU
     const int32_t ex = (int32_t)((uint32_t)bx - (uint32_t)ax), ey = (int32_t)((uint32_t)by - (uint32_t)ay);
-    if ((uint32_t)ex + (1u << 11) < (1u << 12) && (uint32_t)ey + (1u << 11) < (1u << 12) &&
-        (uint32_t)ax + (1u << 19) < (1u << 20) && (uint32_t)ay + (1u << 19) < (1u << 20)) {
+    if ((ex >> 11) == (ex >> 31) && (ey >> 11) == (ey >> 31) && (ax >> 19) == (ax >> 31) &&
+        (ay >> 19) == (ay >> 31)) {
         return ex * ay - ey * ax;
     }
 #endif
