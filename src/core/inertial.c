@@ -141,11 +141,13 @@ static void filter(int32_t state[3], const int32_t input[3], int16_t out[3])
 XGO_ALWAYS_INLINE void filter(int32_t state[3], const int32_t input[3], int16_t out[3])
 #endif
 {
-    unsigned i;
-    for (i = 0; i < 3; i++) {
-        state[i] += (input[i] - state[i]) >> XGO_INERTIAL_FILTER_SHIFT;
-        out[i] = to_lsb(state[i]);
-    }
+    /* the three axes written out: no loop counter or indexing (six values a tick) */
+    state[0] += (input[0] - state[0]) >> XGO_INERTIAL_FILTER_SHIFT;
+    out[0] = to_lsb(state[0]);
+    state[1] += (input[1] - state[1]) >> XGO_INERTIAL_FILTER_SHIFT;
+    out[1] = to_lsb(state[1]);
+    state[2] += (input[2] - state[2]) >> XGO_INERTIAL_FILTER_SHIFT;
+    out[2] = to_lsb(state[2]);
 }
 
 void xgo_inertial_init(xgo_inertial_t *s)
