@@ -94,6 +94,8 @@ int64_t xgo_odometry_cross(int32_t bx, int32_t by, int32_t ax, int32_t ay)
     return cross_of(bx, by, ax, ay);
 }
 
+typedef char xgo_odometry_four_legs_[XGO_LEG_COUNT == 4 ? 1 : -1];
+
 /* The lowest leg in a non-empty contact mask: a table lookup, not a chain
  * of tests (twice a walking tick). */
 static unsigned first_leg(unsigned mask)
@@ -248,12 +250,12 @@ void xgo_odometry_update_measured(xgo_odometry_t *o, const xgo_vec3_t feet_um[XG
         o->last_dyaw = 0;
         o->extrapolated_ticks++;
     }
-    {   /* foot by foot, no memcpy call (every walking tick) */
-        unsigned leg;
-        for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
-            o->prev_um[leg] = feet_um[leg];
-        }
-    }
+    /* foot by foot, no memcpy call and no loop (every walking tick; four
+     * legs, as the masks' tables above assume) */
+    o->prev_um[0] = feet_um[0];
+    o->prev_um[1] = feet_um[1];
+    o->prev_um[2] = feet_um[2];
+    o->prev_um[3] = feet_um[3];
     o->prev_contact = contact;
     o->prev_unmeasured = (uint8_t)(~measured & 0x0Fu);
     o->have_prev = 1;
