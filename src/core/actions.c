@@ -27,6 +27,7 @@
 
 #include <stddef.h>
 
+#include "check.h"
 #include "xgo/config.h" /* XGO_TICK_HZ */
 
 #if (XGO_TICK_HZ % 100u) != 0u
@@ -62,13 +63,14 @@ typedef struct action_s {
 #if XGO_WITH_NAMES
     const char *name;
 #endif
-    uint32_t mask;      /* channels present */
-    uint8_t nch;        /* channels in mask */
+    /* Bit fields: 12 bytes a row, not 16 (26 rows in flash). */
+    unsigned mask : C_COUNT;  /* channels present */
+    unsigned nch : 5;         /* channels in mask */
+    unsigned loop_first : 3;  /* loop section, inclusive; reps 1 = no repeat */
+    unsigned loop_last : 3;
     uint8_t nframes;
-    uint8_t loop_first; /* loop section, inclusive; reps 1 = no repeat */
-    uint8_t loop_last;
     uint8_t loop_reps;
-    uint8_t seconds;    /* the vendor library's wait */
+    uint8_t seconds;          /* the vendor library's wait */
 } action_t;
 
 /* A table's size must be a whole number of keyframes (compile-time). */
@@ -161,17 +163,9 @@ static const int8_t k_roll[] = {
 };
 CHECK_TABLE(k_roll, ROLL_CH);
 
-/* 8 pitch, 4 s: +-18 degrees. */
+/* 8 pitch, 4 s: +-18 degrees: k_roll's keyframes on the pitch channel
+ * (one table in flash for both). */
 #define PITCH_CH (CH(C_PITCH))
-static const int8_t k_pitch[] = {
-    /* dt     pitch */
-    DT(50),   18,
-    DT(100), -18,
-    DT(100),  18,
-    DT(100), -18,
-    DT(50),    0,
-};
-CHECK_TABLE(k_pitch, PITCH_CH);
 
 /* 9 yaw, 4 s: +-14 degrees. */
 #define YAW_CH (CH(C_YAW))
@@ -421,9 +415,9 @@ CHECK_TABLE(k_reset, RESET_CH);
 #define ACTION_NAME_(nm)
 #endif
 #define ACTION(t, m, lf, ll, reps, secs, nm)                                                      \
-    { t, ACTION_NAME_(nm) (m), (uint8_t)NCH(m), (uint8_t)(sizeof(t) / (1u + NCH(m))), (lf), (ll), \
-      (reps), (secs) }
-#define NO_ACTION { NULL, ACTION_NAME_(NULL) 0ul, 0u, 0u, 0u, 0u, 1u, 0u }
+    { t, ACTION_NAME_(nm) (m), NCH(m), (lf), (ll), (uint8_t)(sizeof(t) / (1u + NCH(m))), (reps), \
+      (secs) }
+#define NO_ACTION { NULL, ACTION_NAME_(NULL) 0u, 0u, 0u, 0u, 0u, 1u, 0u }
 
 static const action_t k_actions[XGO_ACTION_LAST + 1u] = {
     NO_ACTION,
@@ -434,7 +428,7 @@ static const action_t k_actions[XGO_ACTION_LAST + 1u] = {
     ACTION(k_step, STEP_CH, 0, 3, 8, 4, "step"),
     ACTION(k_squat, SQUAT_CH, 1, 2, 3, 4, "squat"),
     ACTION(k_roll, ROLL_CH, 0, 0, 1, 4, "roll"),
-    ACTION(k_pitch, PITCH_CH, 0, 0, 1, 4, "pitch"),
+    ACTION(k_roll, PITCH_CH, 0, 0, 1, 4, "pitch"),
     ACTION(k_yaw, YAW_CH, 0, 0, 1, 4, "yaw"),
     ACTION(k_three_axis, THREE_AXIS_CH, 0, 0, 1, 7, "three-axis rotation"),
     ACTION(k_pee, PEE_CH, 2, 3, 8, 7, "pee"),
@@ -560,22 +554,19 @@ static int32_t round_q16(int64_t v)
     return (int32_t)(((v + bias + 32768) >> 16) - (bias >> 16));
 }
 
-/* The pose field a channel drives (channel order: C_BX .. C_LHZ). */
+/* The pose field a channel drives: the channels are in the order of
+ * xgo_pose_t's fields (body x, y, z, roll, pitch, yaw, then each foot's x,
+ * y, z), all int32_t, so channel c is the c-th of them (checked below):
+ * no switch in flash. */
+typedef char pose_is_channels[sizeof(xgo_pose_t) == C_COUNT * sizeof(int32_t) &&
+                                      offsetof(xgo_pose_t, body.yaw_mdeg) == C_YAW * sizeof(int32_t) &&
+                                      offsetof(xgo_pose_t, feet_um[1].y) == C_RFY * sizeof(int32_t)
+                                  ? 1
+                                  : -1];
+
 static int32_t *channel(xgo_pose_t *o, unsigned c)
 {
-    xgo_vec3_t *foot;
-    switch (c) {
-    case C_BX: return &o->body.x_um;
-    case C_BY: return &o->body.y_um;
-    case C_BZ: return &o->body.z_um;
-    case C_ROLL: return &o->body.roll_mdeg;
-    case C_PITCH: return &o->body.pitch_mdeg;
-    case C_YAW: return &o->body.yaw_mdeg;
-    default: break;
-    }
-    c -= 6u;
-    foot = &o->feet_um[c / 3u];
-    return c % 3u == 0u ? &foot->x : (c % 3u == 1u ? &foot->y : &foot->z);
+    return (int32_t *)(void *)((char *)o + c * sizeof(int32_t));
 }
 
 static void zero_pose(xgo_pose_t *o)
@@ -597,13 +588,18 @@ static void evaluate(const action_t *a, unsigned k, uint32_t t_q8, xgo_pose_t *o
     unsigned hc = frame_cs(fc);                   /* segment k */
     unsigned hd = fd != NULL ? frame_cs(fd) : 0u; /* segment k+1 */
     uint32_t h = hc * TICKS_PER_CS;
-    int64_t s = (int64_t)((t_q8 * 256u + h / 2u) / h); /* Q16, [0, 1) */
+    int64_t s = (int64_t)((t_q8 * 256u + h / 2u) / h); /* Q16, [0, 1] (rounded) */
     int64_t s2 = (s * s) >> 16;
     int64_t s3 = (s2 * s) >> 16;
-    int64_t h01 = 3 * s2 - 2 * s3;      /* Hermite basis, Q16 */
-    int64_t h10 = s3 - 2 * s2 + s;
-    int64_t h11 = s3 - s2;
+    /* The Hermite basis, Q16: |h| <= 1 as s <= 1 (the keyframes of every
+     * table add up to its duration, so t stays inside the last segment
+     * too), so 32 bits hold it and the products below are 32 x 32 -> 64
+     * (one instruction on an M3, less flash on both). */
+    int32_t h01 = (int32_t)(3 * s2 - 2 * s3);
+    int32_t h10 = (int32_t)(s3 - 2 * s2 + s);
+    int32_t h11 = (int32_t)(s3 - s2);
     unsigned c, slot = 0;
+    XGO_ASSERT(s <= 65536);
     zero_pose(out);
     for (c = 0; c < (unsigned)C_COUNT; ++c) {
         int va, vb, vc, vd;
@@ -621,7 +617,7 @@ static void evaluate(const action_t *a, unsigned k, uint32_t t_q8, xgo_pose_t *o
         if (fd != NULL) { /* keyframe k is not the last */
             m2 = tangent(vc - vb, vd - vc, hc, hd, hc);
         }
-        *channel(out, c) = vb * UNIT + round_q16((int64_t)(vc - vb) * UNIT * h01 + m1 * h10 + m2 * h11);
+        *channel(out, c) = vb * UNIT + round_q16((int64_t)((vc - vb) * UNIT) * h01 + (int64_t)m1 * h10 + (int64_t)m2 * h11);
         ++slot;
     }
 }
