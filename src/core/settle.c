@@ -5,6 +5,7 @@
 
 #include <string.h>
 
+#include "compiler.h" /* XGO_OWN_FRAME */
 #include "fixed.h"
 
 #define PAIR_A 0x05u         /* LF + RH: the trot's first pair */
@@ -130,8 +131,9 @@ static void plan_move(xgo_settle_t *s, const xgo_vec3_t stance[XGO_LEG_COUNT])
     s->planted = (uint8_t)(s->planted & ~s->moving);
 }
 
-/* a + (b - a) * f, f in Q16 */
-static int32_t lerp(int32_t a, int32_t b, int32_t f)
+/* a + (b - a) * f, f in Q16. Out of line: move_feet's three calls a leg
+ * would each inline its 64-bit product (about 50 bytes of flash). */
+XGO_OWN_FRAME static int32_t lerp(int32_t a, int32_t b, int32_t f)
 {
     return a + (int32_t)(((int64_t)(b - a) * f + ONE_Q16 / 2) >> 16);
 }
@@ -147,13 +149,14 @@ static void move_feet(xgo_settle_t *s, const xgo_vec3_t stance[XGO_LEG_COUNT])
     const int32_t h = (int32_t)(((int64_t)u3 * (10 * ONE_Q16 - 15 * u + 6 * u2)) >> 16);
     const int32_t w = u - u2; /* u (1 - u), at most 1/4 */
     const int32_t bump = (int32_t)(((int64_t)16 * w * w) >> 16);
+    const int32_t up = (int32_t)(((int64_t)s->lift_um * bump) >> 16);
     unsigned leg;
     for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
         if ((s->moving >> leg) & 1u) {
-            s->foot[leg].x = lerp(s->from[leg].x, stance[leg].x, h);
-            s->foot[leg].y = lerp(s->from[leg].y, stance[leg].y, h);
-            s->foot[leg].z = lerp(s->from[leg].z, stance[leg].z, h) +
-                             (int32_t)(((int64_t)s->lift_um * bump) >> 16);
+            xgo_vec3_t *f = &s->foot[leg];
+            f->x = lerp(s->from[leg].x, stance[leg].x, h);
+            f->y = lerp(s->from[leg].y, stance[leg].y, h);
+            f->z = lerp(s->from[leg].z, stance[leg].z, h) + up;
         }
     }
 }
