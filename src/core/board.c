@@ -285,7 +285,7 @@ void xgo_board_init(xgo_board_t *b, const xgo_board_config_t *cfg)
         b->config.model = XGO_MODEL_MINI;
     }
     xgo_regs_init(&b->regs, k_models[b->config.model].firmware, k_models[b->config.model].version);
-    xgo_regs_set(&b->regs, XGO_REG_BATTERY, b->config.battery_pct);
+    xgo_regs_put(&b->regs, XGO_REG_BATTERY, b->config.battery_pct);
     xgo_motion_init(&b->motion, xgo_profile_get((unsigned)b->config.model), b->config.battery_pct);
     xgo_motion_init_registers(&b->motion, &b->regs);
     xgo_motion_publish(&b->motion, &b->regs);
@@ -368,7 +368,7 @@ void xgo_board_ground_tilt(const xgo_board_t *b, int32_t *roll_mdeg, int32_t *pi
 void xgo_board_set_battery(xgo_board_t *b, uint8_t pct)
 {
     xgo_battery_init(&b->motion.battery, pct);
-    xgo_regs_set(&b->regs, XGO_REG_BATTERY, xgo_battery_percent(&b->motion.battery));
+    xgo_regs_put(&b->regs, XGO_REG_BATTERY, xgo_battery_percent(&b->motion.battery));
 }
 
 void xgo_board_push(xgo_board_t *b, int32_t roll_mdeg, int32_t pitch_mdeg)
@@ -512,12 +512,17 @@ size_t xgo_board_rx_pending(const xgo_board_t *b)
     return xgo_parser_pending(&b->parser);
 }
 
+/* The name's registers are stored in one piece (no gap of the image cuts
+ * them, checked here): copied at once. */
+#define BT_NAME_SLOT XGO_REGS_SLOT(XGO_REG_BT_NAME)
+typedef char bt_name_in_one_piece[XGO_REGS_SLOT(XGO_REG_BT_NAME + XGO_BT_NAME_LEN - 1u) ==
+                                          BT_NAME_SLOT + XGO_BT_NAME_LEN - 1u
+                                      ? 1
+                                      : -1];
+
 void xgo_board_get_nv(const xgo_board_t *b, xgo_board_nv_t *nv)
 {
-    unsigned i;
-    for (i = 0; i < XGO_BT_NAME_LEN; i++) {
-        nv->bt_name[i] = (char)xgo_regs_get(&b->regs, (uint8_t)(XGO_REG_BT_NAME + i));
-    }
+    memcpy(nv->bt_name, &b->regs.mem[BT_NAME_SLOT], XGO_BT_NAME_LEN);
     memcpy(nv->zero_offset_mdeg, b->motion.servos.zero_offset_mdeg, sizeof nv->zero_offset_mdeg);
 }
 
@@ -544,9 +549,7 @@ int xgo_board_set_nv(xgo_board_t *b, const xgo_board_nv_t *nv)
     if (len == 0) {
         return 0;
     }
-    for (i = 0; i < XGO_BT_NAME_LEN; i++) {
-        xgo_regs_set(&b->regs, (uint8_t)(XGO_REG_BT_NAME + i), (uint8_t)nv->bt_name[i]);
-    }
+    memcpy(&b->regs.mem[BT_NAME_SLOT], nv->bt_name, XGO_BT_NAME_LEN);
     memcpy(b->motion.servos.zero_offset_mdeg, nv->zero_offset_mdeg,
            sizeof b->motion.servos.zero_offset_mdeg);
     return 1;
