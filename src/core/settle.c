@@ -102,15 +102,19 @@ static void plan_move(xgo_settle_t *s, const xgo_vec3_t stance[XGO_LEG_COUNT])
     const uint8_t air = (uint8_t)(~s->planted & 0x0Fu);
     int32_t far = -1, far_xy = 0;
     unsigned leg, far_leg = 0;
+    if (away == 0) {
+        return; /* nothing to step: home, or the body still coasting */
+    }
     for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
-        const int32_t d = distance_um(&s->foot[leg], &stance[leg], 1);
-        if (((away >> leg) & 1u) && d > far) {
+        int32_t d;
+        if (((away >> leg) & 1u) == 0u) {
+            continue;
+        }
+        d = distance_um(&s->foot[leg], &stance[leg], 1);
+        if (d > far) {
             far = d;
             far_leg = leg;
         }
-    }
-    if (away == 0) {
-        return; /* nothing to step: home, or the body still coasting */
     }
     s->moving = air != 0 ? air : (uint8_t)(away & ((PAIR_A >> far_leg) & 1u ? PAIR_A : PAIR_B));
     far = 0;
