@@ -85,10 +85,16 @@ void xgo_device_stats(const xgo_device_t *d, xgo_device_stats_t *out)
     (XGO_TX_BUFFER_SIZE < XGO_FRAME_MAX_LEN ? (size_t)XGO_TX_BUFFER_SIZE            \
                                             : (size_t)XGO_FRAME_MAX_LEN)
 
-/* Replies that fit the board's transmit buffer whatever the requests ask. */
+/* Replies that fit the board's transmit buffer whatever the requests ask.
+ * When two never fit (a firmware's buffer) that is one or none: a compare,
+ * no division (a library call on an M0). */
 static size_t reply_room(const xgo_device_t *d)
 {
-    return (XGO_TX_BUFFER_SIZE - xgo_board_tx_pending(&d->board)) / REPLY_MAX;
+    const size_t free = XGO_TX_BUFFER_SIZE - xgo_board_tx_pending(&d->board);
+    if (2u * REPLY_MAX > XGO_TX_BUFFER_SIZE) {
+        return free >= REPLY_MAX;
+    }
+    return free / REPLY_MAX;
 }
 
 /* Moves replies to the port as far as it takes them. */
