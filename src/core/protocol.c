@@ -124,6 +124,16 @@ static void count_drop(xgo_parser_t *p, xgo_drop_reason_t reason)
 }
 #undef NONE
 
+/* The sink hears of n bytes dropped for a reason (one call in flash, not
+ * four). */
+static void report_drop(const xgo_parser_t *p, xgo_drop_reason_t reason, const uint8_t *bytes,
+                        size_t n)
+{
+    if (p->sink.on_drop != NULL) {
+        p->sink.on_drop(p->sink.ctx, reason, bytes, n);
+    }
+}
+
 /* Remove the first n held bytes; they count as discarded unless delivered. */
 static void consume(xgo_parser_t *p, size_t n)
 {
@@ -137,9 +147,7 @@ static void consume(xgo_parser_t *p, size_t n)
 static void reject(xgo_parser_t *p, xgo_drop_reason_t reason)
 {
     count_drop(p, reason);
-    if (p->sink.on_drop != NULL) {
-        p->sink.on_drop(p->sink.ctx, reason, p->buf, p->checked);
-    }
+    report_drop(p, reason, p->buf, p->checked);
     p->stats.bytes_discarded++;
     consume(p, 1);
 }
@@ -148,9 +156,7 @@ static void reject(xgo_parser_t *p, xgo_drop_reason_t reason)
  * so a trace can show every byte that was thrown away. */
 static void drop_noise(xgo_parser_t *p, size_t n)
 {
-    if (p->sink.on_drop != NULL) {
-        p->sink.on_drop(p->sink.ctx, XGO_DROP_NOISE, p->buf, n);
-    }
+    report_drop(p, XGO_DROP_NOISE, p->buf, n);
     p->stats.bytes_discarded += (uint32_t)n;
     consume(p, n);
 }
@@ -202,9 +208,7 @@ static void complete(xgo_parser_t *p)
         /* Well-formed but meaningless: the whole frame goes, no rescan (its
          * checksum and tail prove the bytes belong together). */
         p->stats.bad_range++;
-        if (p->sink.on_drop != NULL) {
-            p->sink.on_drop(p->sink.ctx, XGO_DROP_BAD_RANGE, p->buf, len);
-        }
+        report_drop(p, XGO_DROP_BAD_RANGE, p->buf, len);
         p->stats.bytes_discarded += len;
         consume(p, len);
         return;
@@ -267,9 +271,7 @@ static void scan(xgo_parser_t *p)
 static void abandon(xgo_parser_t *p, xgo_drop_reason_t reason)
 {
     count_drop(p, reason);
-    if (p->sink.on_drop != NULL) {
-        p->sink.on_drop(p->sink.ctx, reason, p->buf, p->end);
-    }
+    report_drop(p, reason, p->buf, p->end);
     while (p->end > 0) {
         p->stats.bytes_discarded++;
         consume(p, 1);
