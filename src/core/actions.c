@@ -617,7 +617,8 @@ static void evaluate(const action_t *a, unsigned k, uint32_t t_q8, xgo_pose_t *o
         if (fd != NULL) { /* keyframe k is not the last */
             m2 = tangent(vc - vb, vd - vc, hc, hd, hc);
         }
-        *channel(out, c) = vb * UNIT + round_q16((int64_t)((vc - vb) * UNIT) * h01 + (int64_t)m1 * h10 + (int64_t)m2 * h11);
+        *channel(out, c) = vb * UNIT + round_q16((int64_t)((vc - vb) * UNIT) * h01 +
+                                                 (int64_t)m1 * h10 + (int64_t)m2 * h11);
         ++slot;
     }
 }
