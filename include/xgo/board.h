@@ -119,8 +119,10 @@ typedef struct xgo_board_s {
     uint32_t tx_overflows;
     uint32_t framing_errors;        /* bytes the UART received with a bad stop bit */
     uint32_t ticks;
+#if XGO_WITH_TRACE
     xgo_trace_fn trace;
     void *trace_ctx;
+#endif
 } xgo_board_t;
 
 /* The answer (one byte at 0x05, TYPE 0x12) to an upgrade request from the
@@ -139,7 +141,8 @@ void xgo_board_default_config(xgo_board_config_t *cfg);
 /* cfg may be NULL for the defaults. */
 void xgo_board_init(xgo_board_t *b, const xgo_board_config_t *cfg);
 
-/* Optional observer of every frame in and out and of every drop. */
+/* Optional observer of every frame in and out and of every drop (does
+ * nothing in a build without XGO_WITH_TRACE, xgo/config.h). */
 void xgo_board_set_trace(xgo_board_t *b, xgo_trace_fn fn, void *ctx);
 
 /* Bytes from the host that arrived at now_ms. Requests are applied and

@@ -79,7 +79,12 @@
  * XGO_WITH_NAMES: the names of registers, actions and counters, for traces
  *   and tools (the register table's name field, xgo_reg_name,
  *   xgo_action_name, xgo_diag_name): without them the table has no name
- *   field and each of these returns "" where it would return a name. */
+ *   field and each of these returns "" where it would return a name.
+ * XGO_WITH_TRACE: the board's trace hook (xgo_board_set_trace), an observer
+ *   of every frame and drop for the emulator's --trace, captures and tests:
+ *   without it xgo_board_set_trace does nothing and no event is formed; the
+ *   drops are counted all the same (a firmware reports them through the
+ *   diagnostic block, 0xC4). */
 #ifndef XGO_WITH_LITE
 #define XGO_WITH_LITE 1
 #endif
@@ -94,6 +99,9 @@
 #endif
 #ifndef XGO_WITH_NAMES
 #define XGO_WITH_NAMES 1
+#endif
+#ifndef XGO_WITH_TRACE
+#define XGO_WITH_TRACE 1
 #endif
 #ifndef XGO_WITH_EMULATOR_INPUTS
 #define XGO_WITH_EMULATOR_INPUTS 1

@@ -53,11 +53,20 @@ void xgo_board_default_config(xgo_board_config_t *cfg)
     cfg->battery_pct = 100;
 }
 
+/* Whether someone observes the board (xgo_board_set_trace): never in a
+ * build without the hook, where every event's forming compiles away. */
+#if XGO_WITH_TRACE
+#define TRACED(b) ((b)->trace != NULL)
+#else
+#define TRACED(b) 0
+#endif
+
 static void emit(xgo_board_t *b, xgo_trace_kind_t kind, xgo_drop_reason_t reason,
                  const xgo_frame_t *frame, const uint8_t *raw, size_t raw_len, uint8_t unmapped)
 {
+#if XGO_WITH_TRACE
     xgo_trace_event_t ev;
-    if (b->trace == NULL) {
+    if (!TRACED(b)) {
         return;
     }
     ev.kind = kind;
@@ -68,6 +77,9 @@ static void emit(xgo_board_t *b, xgo_trace_kind_t kind, xgo_drop_reason_t reason
     ev.raw_len = raw_len;
     ev.unmapped = unmapped;
     b->trace(b->trace_ctx, &ev);
+#else
+    (void)b, (void)kind, (void)reason, (void)frame, (void)raw, (void)raw_len, (void)unmapped;
+#endif
 }
 
 /* The transmit queue is linear: the bytes waiting are tx[tx_head ..
@@ -192,7 +204,7 @@ static void read_registers(const xgo_board_t *b, uint8_t addr, size_t n, uint8_t
 XGO_OWN_FRAME static void read_lost(xgo_board_t *b, uint8_t addr, size_t n)
 {
     uint8_t data[XGO_FRAME_MAX_DATA];
-    if (b->trace == NULL) {
+    if (!TRACED(b)) {
         reply_lost(b, addr, NULL, n);
         return;
     }
@@ -293,8 +305,12 @@ void xgo_board_init(xgo_board_t *b, const xgo_board_config_t *cfg)
 
 void xgo_board_set_trace(xgo_board_t *b, xgo_trace_fn fn, void *ctx)
 {
+#if XGO_WITH_TRACE
     b->trace = fn;
     b->trace_ctx = ctx;
+#else
+    (void)b, (void)fn, (void)ctx;
+#endif
 }
 
 void xgo_board_receive(xgo_board_t *b, const uint8_t *bytes, size_t n, uint32_t now_ms)
