@@ -556,6 +556,7 @@ static void test_name_and_zero_offsets_survive_a_restart(void)
     /* A rename makes the board save again what it holds: the offsets it
      * was started with. */
     write_regs(g_port, 0x13, "Rex-02", 6);
+    read_regs(g_port, 0x13, XGO_BT_NAME_LEN, back); /* the write was handled (a loaded machine) */
     xgo_test_sleep_us(50000);
     close(g_port);
     g_port = -1;
@@ -603,6 +604,7 @@ static void test_planted_file_at_the_temporary_name_is_not_adopted(void)
 {
     char plant[160];
     char text[256];
+    uint8_t back[XGO_BT_NAME_LEN];
     xgo_board_nv_t nv;
     struct stat planted, saved;
     emu_start_with_state(NULL, NULL);
@@ -615,6 +617,7 @@ static void test_planted_file_at_the_temporary_name_is_not_adopted(void)
     TEST_ASSERT_EQUAL_INT(0, stat(plant, &planted));
     g_port = port_open();
     write_regs(g_port, 0x13, "Mine", 4);
+    read_regs(g_port, 0x13, XGO_BT_NAME_LEN, back); /* the write was handled (a loaded machine) */
     xgo_test_sleep_us(50000);
     close(g_port);
     g_port = -1;
