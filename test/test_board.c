@@ -4,11 +4,13 @@
  * traced, vendor writes for other models, auto-clear, diagnostics over the
  * wire, transmit overflow.
  */
+#include <math.h>
 #include <string.h>
 
 #include "board_io.h"
 #include "unity.h"
 #include "xgo/board.h"
+#include "xgo/profile.h"
 
 static xgo_board_t board;
 
@@ -442,6 +444,143 @@ static void test_turn_command_reads_turning_until_the_tick_decides(void)
     TEST_ASSERT_EQUAL_HEX8(0x80, wire_read1(0x40));
 }
 
+/* ---- the joint registers 0x50..0x5B, formed on read ----
+ * The board once stored them at power-up and at the end of every tick:
+ * each joint's angle through the vendor's range map. joints_as_stored is
+ * that store (in double, from the public observers), taken at those same
+ * moments; every read until the next tick must give exactly it, whatever
+ * was written in between. */
+static uint8_t joints_as_stored[XGO_SERVO_COUNT];
+
+static void store_joints(const xgo_profile_t *p)
+{
+    int32_t q[XGO_SERVO_COUNT];
+    unsigned i;
+    xgo_board_joints_mdeg(&board, q);
+    for (i = 0; i < XGO_SERVO_COUNT; i++) {
+        const xgo_range_t *r = &p->joint_mdeg[i % XGO_JOINT_COUNT];
+        joints_as_stored[i] = q[i] <= r->lo   ? 0u
+                              : q[i] >= r->hi ? 255u
+                                              : (uint8_t)floor(255.0 * ((double)q[i] - r->lo) /
+                                                               ((double)r->hi - r->lo));
+    }
+}
+
+/* Reads over the joints and past either end, every start from 0x40 to
+ * 0x5C and several lengths: each gives the image's bytes (the joints as
+ * stored) and writes no byte past its end; and one over the wire. */
+static void check_joint_reads(void)
+{
+    static const uint8_t lens[] = {1, 2, 3, 4, 5, 12, 13, 16, 30};
+    uint8_t image[XGO_REG_COUNT];
+    uint8_t buf[32];
+    unsigned start, k;
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_board_read(&board, 0x00, XGO_FRAME_MAX_DATA, image));
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_board_read(&board, XGO_FRAME_MAX_DATA,
+                                                        XGO_REG_COUNT - XGO_FRAME_MAX_DATA,
+                                                        &image[XGO_FRAME_MAX_DATA]));
+    TEST_ASSERT_EQUAL_HEX8_ARRAY(joints_as_stored, &image[XGO_REG_SERVO11], XGO_SERVO_COUNT);
+    for (start = 0x40; start <= 0x5C; start++) {
+        for (k = 0; k < sizeof lens; k++) {
+            memset(buf, 0xA5, sizeof buf);
+            TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_board_read(&board, (uint8_t)start, lens[k], buf));
+            TEST_ASSERT_EQUAL_HEX8_ARRAY(&image[start], buf, lens[k]);
+            TEST_ASSERT_EQUAL_HEX8(0xA5, buf[lens[k]]);
+        }
+    }
+    wire_read(XGO_REG_SERVO11, XGO_SERVO_COUNT, buf);
+    TEST_ASSERT_EQUAL_HEX8_ARRAY(joints_as_stored, buf, XGO_SERVO_COUNT);
+}
+
+/* One random host write among those that move the joints or stop them:
+ * servo commands (servo mode), unloading and loading, actions and the
+ * reset, walking, the body pose, calibration, the servo speed, the arm. */
+static void random_joint_write(uint32_t *seed, int arm)
+{
+    uint8_t data[XGO_SERVO_COUNT];
+    const uint32_t r = xgo_test_xorshift32(seed);
+    const uint8_t v = (uint8_t)(r >> 8);
+    unsigned i;
+    switch (r % 12u) {
+    case 0: /* servo mode: a few commands, any byte */
+    case 1:
+        for (i = 0; i < XGO_SERVO_COUNT; i++) {
+            data[i] = (uint8_t)(xgo_test_xorshift32(seed) >> 4);
+        }
+        i = (r >> 16) % XGO_SERVO_COUNT;
+        send_write((uint8_t)(XGO_REG_SERVO11 + i), data, XGO_SERVO_COUNT - i);
+        break;
+    case 2: { /* all, one leg, loaded or not */
+        static const uint8_t unload[] = {0x00, 0x01, 0x11, 0x12, 0x13, 0x14, 0x21, 0x22, 0x23, 0x24};
+        xgo_test_write1(&board, XGO_REG_UNLOAD, unload[v % sizeof unload], 0);
+        break;
+    }
+    case 3: /* an action now and then (they last seconds), else a stop */
+        xgo_test_write1(&board, XGO_REG_ACTION,
+                        v % 4u != 0    ? 0u
+                        : v % 32u == 0 ? XGO_ACTION_RESET
+                                       : (uint8_t)((v >> 2) % XGO_ACTION_LAST + 1u),
+                        0);
+        break;
+    case 4:
+        xgo_test_write1(&board, XGO_REG_VX, v, 0);
+        break;
+    case 5:
+        xgo_test_write1(&board, XGO_REG_VYAW, v, 0);
+        break;
+    case 6:
+        xgo_test_write1(&board, (uint8_t)(XGO_REG_BODY_X + v % 6u), (uint8_t)(r >> 16), 0);
+        break;
+    case 7:
+        xgo_test_write1(&board, XGO_REG_CALIBRATION, v % 4u == 0, 0);
+        break;
+    case 8:
+        xgo_test_write1(&board, XGO_REG_SERVO_SPEED, v, 0);
+        break;
+    case 9:
+        xgo_test_write1(&board, XGO_REG_MOVE_MODE, v % 3u, 0);
+        break;
+    case 10: /* the Mini2's arm (0x5D, 0x5E, 0x71..); the others' stand */
+        if (arm) {
+            xgo_test_write1(&board, (uint8_t)(v & 1u ? XGO_REG_ARM_ELBOW : XGO_REG_CLAW),
+                            (uint8_t)(r >> 16), 0);
+        } else {
+            xgo_test_write1(&board, XGO_REG_STAND, v & 1u, 0);
+        }
+        break;
+    default: /* the feet (leg mode) */
+        xgo_test_write1(&board, (uint8_t)(0x40u + v % 12u), (uint8_t)(r >> 16), 0);
+        break;
+    }
+}
+
+static void test_joint_reads_give_the_bytes_a_tick_stored(void)
+{
+    static const xgo_model_t models[] = {XGO_MODEL_MINI, XGO_MODEL_LITE, XGO_MODEL_MINI2};
+    unsigned m, t;
+    uint32_t seed = 0x2545F491u;
+    for (m = 0; m < sizeof models / sizeof models[0]; m++) {
+        xgo_board_config_t cfg;
+        const xgo_profile_t *p = xgo_profile_get((unsigned)models[m]);
+        xgo_board_default_config(&cfg);
+        cfg.model = models[m];
+        xgo_board_init(&board, &cfg);
+        store_joints(p); /* power-up */
+        check_joint_reads();
+        for (t = 0; t < 6000; t++) {
+            if (xgo_test_xorshift32(&seed) % 25u == 0) {
+                random_joint_write(&seed, models[m] == XGO_MODEL_MINI2);
+                check_joint_reads(); /* written, not yet ticked */
+            }
+            xgo_board_tick(&board);
+            store_joints(p);
+            if (t % 16u == 0) {
+                check_joint_reads();
+            }
+        }
+    }
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -465,5 +604,6 @@ int main(void)
     RUN_TEST(test_read_requests_never_change_state);
     RUN_TEST(test_upgrade_request_is_answered_at_once);
     RUN_TEST(test_turn_command_reads_turning_until_the_tick_decides);
+    RUN_TEST(test_joint_reads_give_the_bytes_a_tick_stored);
     return UNITY_END();
 }

@@ -81,7 +81,8 @@ typedef struct xgo_regs_s {
 #endif
     uint8_t turn_to[2];              /* last heading command at 0x3F, int16 BE */
     uint8_t servo_cmd[12];           /* servo-mode commands written to 0x50..0x5B
-                                        (mem there: the joints as they are) */
+                                        (a read there gives the joints as they
+                                        are, formed by the board) */
 #if XGO_WITH_MINI2
     uint8_t servo_speed;             /* last value written to 0x5C (on the Mini2
                                         0x5C reads the claw instead; without the

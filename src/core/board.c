@@ -184,15 +184,39 @@ static void reply_lost(xgo_board_t *b, uint8_t addr, const uint8_t *data, size_t
     emit(b, XGO_TRACE_DROP, XGO_DROP_TX_OVERFLOW, &reply, NULL, 0, 0);
 }
 
+/* The joint registers 0x50..0x5B inside a read of n bytes at addr: each
+ * joint where it is now, in its profile range. Only a tick moves the
+ * servos, so this is what the tick would have stored after moving them;
+ * formed here, the tick pays nothing for bytes a host reads now and then. */
+static void read_joints(const xgo_board_t *b, uint8_t addr, size_t n, uint8_t *out)
+{
+    const xgo_profile_t *p = b->motion.profile;
+    const int32_t *q = b->motion.servos.angle_mdeg;
+    unsigned i, j;
+    if ((size_t)addr + n <= XGO_REG_SERVO11 || addr > XGO_REG_SERVO43) {
+        return; /* most reads: status, attitude, the block */
+    }
+    for (i = 0; i < XGO_SERVO_COUNT; i += XGO_JOINT_COUNT) {
+        for (j = 0; j < XGO_JOINT_COUNT; j++) {
+            /* wraps above n for a register before addr: one compare */
+            const size_t at = (size_t)(XGO_REG_SERVO11 + i + j) - addr;
+            if (at < n) {
+                out[at] = xgo_range_to_byte(&p->joint_mdeg[j], q[i + j]);
+            }
+        }
+    }
+}
+
 /* Registers as a host read returns them: the register file's image and
- * views, and the diagnostic block formed from the counters as they are now
- * (uint32 little-endian; the register image keeps no copy of them). The
- * caller checked the range (xgo_regs_read's rule). */
+ * views, the joints (read_joints) and the diagnostic block formed from the
+ * counters as they are now (uint32 little-endian): the register image keeps
+ * no copy of either. The caller checked the range (xgo_regs_read's rule). */
 static void read_registers(const xgo_board_t *b, uint8_t addr, size_t n, uint8_t *out)
 {
     const size_t end = (size_t)addr + n;
     size_t reg = addr > XGO_REG_DIAG ? (size_t)addr : (size_t)XGO_REG_DIAG;
     (void)xgo_regs_read(&b->regs, addr, n, out);
+    read_joints(b, addr, n, out);
     for (; reg < end && reg < XGO_REG_DIAG + 4u * XGO_DIAG_COUNT; reg++) {
         const unsigned i = (unsigned)(reg - XGO_REG_DIAG);
         out[reg - addr] = (uint8_t)(diag_counter(b, i / 4u) >> (8u * (i % 4u)));

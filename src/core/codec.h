@@ -86,10 +86,6 @@ int32_t xgo_byte_to_foot(const xgo_profile_t *p, xgo_axis_t axis, uint8_t b);
 /* All twelve, in register order (out[0] is 0x50 / 0x40, out[11] is 0x5B / 0x4B). */
 void xgo_joints_to_bytes(const xgo_profile_t *p, const int32_t q_mdeg[XGO_LEG_COUNT][XGO_JOINT_COUNT],
                          uint8_t out[XGO_LEG_COUNT * XGO_JOINT_COUNT]);
-/* The same, re-encoding: bytes holds the last encoding (any value is
- * correct, a close one is cheaper) and becomes that of q_mdeg. */
-void xgo_joints_update_bytes(const xgo_profile_t *p, const int32_t q_mdeg[XGO_LEG_COUNT][XGO_JOINT_COUNT],
-                             uint8_t bytes[XGO_LEG_COUNT * XGO_JOINT_COUNT]);
 void xgo_bytes_to_joints(const xgo_profile_t *p, const uint8_t in[XGO_LEG_COUNT * XGO_JOINT_COUNT],
                          int32_t q_mdeg[XGO_LEG_COUNT][XGO_JOINT_COUNT]);
 void xgo_feet_to_bytes(const xgo_profile_t *p, const xgo_vec3_t feet_leg_um[XGO_LEG_COUNT],

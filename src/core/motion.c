@@ -700,9 +700,10 @@ void xgo_motion_feet_body(const xgo_motion_t *m, xgo_vec3_t out[XGO_LEG_COUNT])
 
 /* ------------------------------------------------------------ publish */
 
+/* Not the joints 0x50..0x5B: a read forms them from the servos' angles
+ * (board.c, read_joints), as nobody reads them most ticks. */
 void xgo_motion_publish(const xgo_motion_t *m, xgo_regs_t *r)
 {
-    xgo_regs_set_joints(r, m->profile, (const int32_t(*)[XGO_JOINT_COUNT])m->servos.angle_mdeg);
     /* constant addresses: stores, not five calls every tick */
     xgo_regs_put(r, XGO_REG_MODE, m->mode);
     if (!xgo_battery_is_percent(&m->battery, xgo_regs_at(r, XGO_REG_BATTERY))) {

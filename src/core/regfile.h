@@ -18,7 +18,6 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "codec.h"            /* xgo_joints_update_bytes */
 #include "compiler.h"         /* XGO_ALWAYS_INLINE */
 #include "xgo/board_state.h" /* xgo_regs_t */
 #include "xgo/regs.h"
@@ -86,16 +85,9 @@ XGO_ALWAYS_INLINE int xgo_regs_take_any_written(xgo_regs_t *r) /* inline: every 
 
 /* Board-side updates of computed registers. */
 void xgo_regs_set_attitude(xgo_regs_t *r, int32_t roll_mdeg, int32_t pitch_mdeg, int32_t yaw_mdeg);
-/* The servo registers 0x50..0x5B: the joints' angles (p's ranges), each
- * re-encoded from its last byte (cheap while it stays in that byte).
- * Inline, as the next: every tick, the codec called straight away. */
-XGO_ALWAYS_INLINE void xgo_regs_set_joints(xgo_regs_t *r, const xgo_profile_t *p,
-                                           const int32_t q_mdeg[XGO_LEG_COUNT][XGO_JOINT_COUNT])
-{
-    xgo_joints_update_bytes(p, q_mdeg, &r->mem[XGO_REGS_SLOT(XGO_REG_SERVO11)]);
-}
 /* The IMU block's acceleration (16384 LSB = 1 g) and angular rate (16.4 LSB
- * = 1 deg/s), body axes x forward, y left, z up (docs/motion.md). */
+ * = 1 deg/s), body axes x forward, y left, z up (docs/motion.md). Inline:
+ * every tick. */
 XGO_ALWAYS_INLINE void xgo_regs_set_inertial(xgo_regs_t *r, const int16_t accel[3], const int16_t gyro[3])
 {
 #if XGO_WITH_INERTIAL
@@ -125,7 +117,8 @@ const xgo_reg_desc_t *xgo_regs_find(const xgo_regs_t *r, uint8_t addr);
 
 /* The last servo-mode command byte written to 0x50 + servo (servo 0..11),
  * the initial 0x80 until then and after a reset. A host cannot read it: a
- * read of 0x50..0x5B gives the joints where they are. */
+ * read of 0x50..0x5B gives the joints where they are (the board forms
+ * those bytes; the image keeps its initial ones there). */
 uint8_t xgo_regs_servo_command(const xgo_regs_t *r, unsigned servo);
 
 #ifdef __cplusplus

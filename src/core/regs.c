@@ -322,9 +322,10 @@ static void store_firmware(xgo_regs_t *r, const char *firmware)
     }
 }
 
-/* The joint registers read where the joints are (the board publishes them
- * every tick); what a host writes there is a servo-mode command, kept apart
- * in servo_cmd so that no read ever returns it (docs/registers.md). */
+/* The joint registers read where the joints are (the board forms those
+ * bytes on read: board.c, read_joints; the image keeps its initial ones);
+ * what a host writes there is a servo-mode command, kept apart in
+ * servo_cmd so that no read ever returns it (docs/registers.md). */
 static int is_servo_reg(unsigned addr)
 {
     return addr >= XGO_REG_SERVO11 && addr <= XGO_REG_SERVO43;
