@@ -23,8 +23,9 @@
  * big-endian heading in degrees, as one command; the second byte does not go
  * to 0x40. A read of 0x3F gives 0 while turning, 1 when done. Writes to the
  * joint registers 0x50..0x5B are servo-mode commands kept apart: a read
- * there always gives the joints as they are, which the board publishes
- * every tick.
+ * there always gives the joints as they are, formed by the board from the
+ * servos' angles when it is read (the register file's bytes there are not
+ * read).
  *
  * A write is validated whole before anything changes (docs/decisions.md).
  * Checks: lookups take any address or value (unmapped: NULL / "-", outside a
