@@ -843,6 +843,17 @@ static void test_swing_feet_meet_the_ground_near_its_speed_while_it_changes(void
     worst_touchdown_mm_s = worst_touchdown_mm_s > before_touchdown ? worst_touchdown_mm_s : before_touchdown;
 }
 
+/* A random command of the vendor box: any gait and pace, mark time now and then. */
+static void random_walk_command(xgo_gait_command_t *c)
+{
+    c->vx_um_s = rnd_speed(250000);
+    c->vy_um_s = rnd_speed(180000);
+    c->vyaw_mdeg_s = rnd_speed(100000);
+    c->type = (uint8_t)(rnd() % 4);
+    c->pace = (uint8_t)(rnd() % 3);
+    c->mark_time_um = rnd() % 6 == 0 ? rnd_range(10000, 35000) : 0;
+}
+
 /* The gait's caches (the speed limit's, the fitted cadence's with its swing
  * time, the touchdown points kept as landing points, land_is_td) are pure:
  * a gait that forgets them before every tick publishes the same feet,
@@ -859,12 +870,7 @@ static void test_caches_change_no_result(void)
     while (t < 60000) {
         int hold = rnd_range(1, 300);
         int i, leg;
-        c.vx_um_s = rnd_speed(250000);
-        c.vy_um_s = rnd_speed(180000);
-        c.vyaw_mdeg_s = rnd_speed(100000);
-        c.type = (uint8_t)(rnd() % 4);
-        c.pace = (uint8_t)(rnd() % 3);
-        c.mark_time_um = rnd() % 6 == 0 ? rnd_range(10000, 35000) : 0;
+        random_walk_command(&c);
         for (i = 0; i < hold; ++i, ++t) {
             /* what xgo_gait_init leaves in the cache keys: no key matches */
             fresh.cache_cmd_type = fresh.cache_v_type = 0xFFu;
@@ -899,12 +905,7 @@ static void test_planted_reach_grows_with_the_yaw_rate_seen(void)
     while (t < 40000) {
         int hold = rnd_range(1, 400);
         int i, leg;
-        c.vx_um_s = rnd_speed(250000);
-        c.vy_um_s = rnd_speed(180000);
-        c.vyaw_mdeg_s = rnd_speed(100000);
-        c.type = (uint8_t)(rnd() % 4);
-        c.pace = (uint8_t)(rnd() % 3);
-        c.mark_time_um = rnd() % 6 == 0 ? rnd_range(10000, 35000) : 0;
+        random_walk_command(&c);
         for (i = 0; i < hold; ++i, ++t) {
             const int32_t yaw = g.vyaw_mdeg_s < 0 ? -g.vyaw_mdeg_s : g.vyaw_mdeg_s;
             const int32_t ry = XGO_GAIT_REACH_Y_UM +
