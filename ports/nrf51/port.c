@@ -144,13 +144,16 @@ static void timer0_irq(void)
     xgo_device_tick_due(&device);
 }
 
+/* The table below ends at TIMER0: every interrupt enabled must be in it. */
+typedef char uart0_irq_in_the_table[UART0_IRQ < TIMER0_IRQ ? 1 : -1];
+
 #define U xgo_cm_unexpected_handler
 __attribute__((section(".isr_vector"), used)) static const struct {
     xgo_cm_system_vectors_t system;
     /* IRQ 0..8 of the nRF51's 32: the table ends with the last one enabled
      * (TIMER0). An interrupt above it is never enabled, so never taken (92
      * bytes of flash less). */
-    xgo_cm_handler_t irq[9];
+    xgo_cm_handler_t irq[TIMER0_IRQ + 1u]; /* its last entry is timer0_irq */
 } vectors = {XGO_CM_SYSTEM_VECTORS(U),
              {U, U, uart0_irq /* 2 */, U, U, U, U, U, timer0_irq /* 8 */}};
 #undef U

@@ -150,7 +150,7 @@ __attribute__((section(".isr_vector"), used)) static const struct {
     /* IRQ 0..37 of the STM32F100's 56: the table ends with the last one
      * enabled (USART1). An interrupt above it is never enabled, so never
      * taken (72 bytes of flash less). */
-    xgo_cm_handler_t irq[38];
+    xgo_cm_handler_t irq[USART1_IRQ + 1u]; /* its last entry is usart1_irq */
 } vectors = {
     XGO_CM_SYSTEM_VECTORS(systick_irq),
     {U, U, U, U, U, U, U, U, U, U, U, U, U, U, U, U, U, U, U, U,

@@ -21,7 +21,8 @@ static const struct {
     uint8_t version;
 } k_models[] = {
     {"M-EMU-0.1", XGO_VERSION_MINI},
-#if XGO_WITH_LITE || XGO_WITH_MINI2 /* a model left out has no row (xgo_board_init) */
+#if XGO_WITH_LITE || XGO_WITH_MINI2 /* no row without either model; with the Mini2 alone the
+                                     * Lite's stays, keeping the Mini2's index (xgo_board_init) */
     {"L-EMU-0.1", XGO_VERSION_LITE},
 #endif
 #if XGO_WITH_MINI2
@@ -121,14 +122,26 @@ size_t xgo_board_tx_pending(const xgo_board_t *b)
 
 /* Where counter i of the diagnostic block lives in the board
  * (XGO_DIAG_LIST): a table of offsets is a third of the flash a switch
- * over the members takes. Every counter is a uint32_t (checked below). */
-static const uint16_t k_diag_offset[XGO_DIAG_COUNT] = {
-#define DIAG_OFFSET_(id, name, member) (uint16_t)offsetof(xgo_board_t, member),
+ * over the members takes. Every counter is a uint32_t, and its offset fits
+ * the table's type (checked below): 16 bits, unless a transmit buffer near
+ * 64 KiB (xgo/config.h allows up to 65535) puts the counters behind it
+ * further out. */
+#if XGO_TX_BUFFER_SIZE > 60000u
+typedef uint32_t diag_offset_t;
+#else
+typedef uint16_t diag_offset_t;
+#endif
+static const diag_offset_t k_diag_offset[XGO_DIAG_COUNT] = {
+#define DIAG_OFFSET_(id, name, member) (diag_offset_t)offsetof(xgo_board_t, member),
     XGO_DIAG_LIST(DIAG_OFFSET_)
 #undef DIAG_OFFSET_
 };
 #define DIAG_IS_U32_(id, name, member)                                                     \
-    typedef char diag_##name##_is_u32[sizeof(((xgo_board_t *)0)->member) == 4u ? 1 : -1];
+    typedef char diag_##name##_is_u32[sizeof(((xgo_board_t *)0)->member) == 4u ? 1 : -1]; \
+    typedef char diag_##name##_offset_fits[(diag_offset_t)offsetof(xgo_board_t, member) == \
+                                                   offsetof(xgo_board_t, member)           \
+                                               ? 1                                          \
+                                               : -1];
 XGO_DIAG_LIST(DIAG_IS_U32_)
 #undef DIAG_IS_U32_
 

@@ -342,7 +342,7 @@ static void load_initial(xgo_regs_t *r, int power_up)
             continue;
         }
         if (!power_up && ((d->flags & XGO_REGF_NONVOLATILE) != 0 || is_servo_reg(d->addr))) {
-            continue; /* a reset keeps the name, and the joints read where they are */
+            continue; /* a reset keeps the name (the joints' image bytes are never read: board.c forms them) */
         }
         memset(&r->mem[slot(d->addr)], d->initial, d->width);
     }

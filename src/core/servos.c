@@ -85,7 +85,7 @@ int xgo_servos_follow(xgo_servos_t *s, const int32_t target_mdeg[XGO_SERVO_COUNT
 {
     const xgo_range_t *range = s->profile->joint_mdeg;
     unsigned leg, j, i = 0;
-    int at = 1; /* every angle == target_mdeg: cleared on the rare branches only */
+    int at = 1; /* with joints unloaded: every angle so far == target_mdeg */
     if (max_step_mdeg < 0) {
         max_step_mdeg = 0;
     }
