@@ -485,6 +485,32 @@ static void check_sincos(uint32_t a)
     TEST_ASSERT_TRUE(c >= -XGO_Q30_ONE && c <= XGO_Q30_ONE);
 }
 
+/* The near-0 form gives xgo_sincos's values: every angle within 2^22 BAM
+ * of 0 and a margin past either end (its own path and the fallback's
+ * edge), and angles spread over the whole turn (the fallback). */
+static void test_sincos_near0_is_sincos(void)
+{
+    int32_t d;
+    uint32_t i;
+    for (d = -(1 << 22) - 4096; d <= (1 << 22) + 4096; ++d) {
+        xgo_q30_t s0, c0, s1, c1;
+        xgo_sincos((xgo_bam_t)d, &s0, &c0);
+        xgo_sincos_near0((xgo_bam_t)d, &s1, &c1);
+        if (s0 != s1 || c0 != c1) {
+            TEST_ASSERT_EQUAL_INT32_MESSAGE(s0, s1, "sin near 0");
+            TEST_ASSERT_EQUAL_INT32_MESSAGE(c0, c1, "cos near 0");
+        }
+    }
+    for (i = 0; i < (1u << 16); ++i) {
+        const xgo_bam_t a = i * 65537u + 12345u;
+        xgo_q30_t s0, c0, s1, c1;
+        xgo_sincos(a, &s0, &c0);
+        xgo_sincos_near0(a, &s1, &c1);
+        TEST_ASSERT_EQUAL_INT32(s0, s1);
+        TEST_ASSERT_EQUAL_INT32(c0, c1);
+    }
+}
+
 static void test_sincos_against_libm(void)
 {
     uint32_t i, k;
@@ -770,6 +796,7 @@ int main(void)
     RUN_TEST(test_q16_sqrt_against_libm);
     RUN_TEST(test_angle_conversions);
     RUN_TEST(test_sincos_against_libm);
+    RUN_TEST(test_sincos_near0_is_sincos);
     RUN_TEST(test_atan2_against_libm);
     RUN_TEST(test_atan2_64_against_libm);
     RUN_TEST(test_atan2_len30_against_libm);

@@ -394,6 +394,25 @@ XGO_ALWAYS_INLINE int32_t mul_q34_round(int32_t t, int32_t v)
 #endif
 }
 
+/* The offset d from a table node (|d| <= 2^22 BAM) as sin d in Q34 (d in
+ * radians less d^3/6) and 1 - cos d = d^2/2 in Q30: xgo_sincos's small
+ * terms, shared with xgo_sincos_near0. */
+XGO_ALWAYS_INLINE void offset_terms(int32_t d, int32_t *sd_out, int32_t *half_d2_out)
+{
+    /* d in radians, Q34: 25 d + d (8 pi - 25), the fraction in two 16-bit
+     * pieces of d (d = 256 dh + dl); |dr| <= pi/512 * 2^34 < 2^26.7 */
+    const int32_t dh = d >> 8, dl = d & 0xFF;
+    const int32_t dr = 25 * d + ((dh * EIGHT_PI_FRAC_Q19 + (1 << 10)) >> 11) +
+                       ((dl * EIGHT_PI_FRAC_Q19) >> 19);
+    /* d^2/2 in Q30 (<= 2^14.3) from |dr| in Q23 (< 2^15.7: the square fits 32 bits unsigned) */
+    const uint32_t u = ((uint32_t)(dr < 0 ? -dr : dr) + (1u << 10)) >> 11;
+    const int32_t half_d2 = (int32_t)((u * u + (1u << 16)) >> 17);
+    /* d^3/6 = d * (d^2/2) / 3 in Q34: (dr in Q22) * half_d2 -> Q52 */
+    const int32_t d3_2 = ((dr >> 12) * half_d2 + (1 << 17)) >> 18;
+    *sd_out = dr - (d3_2 < 0 ? -div3_small(-d3_2) : div3_small(d3_2)); /* Q34 */
+    *half_d2_out = half_d2;
+}
+
 /* The nearest table node and the angle-addition formulas:
  *   sin(a + d) = s0 cos d + c0 sin d,  cos(a + d) = c0 cos d - s0 sin d,
  * sin d = d - d^3/6 (next term < 1e-13), 1 - cos d = d^2/2 (next term
@@ -405,18 +424,10 @@ void xgo_sincos(xgo_bam_t a, xgo_q30_t *sin_out, xgo_q30_t *cos_out)
     const uint32_t r = a & 0x3FFFFFFFu;        /* position in the quadrant */
     const uint32_t k = (r + (1u << 22)) >> 23; /* nearest table node, 0..128 */
     const int32_t d = (int32_t)r - (int32_t)(k << 23); /* |d| <= 2^22 BAM */
-    /* d in radians, Q34: 25 d + d (8 pi - 25), the fraction in two 16-bit
-     * pieces of d (d = 256 dh + dl); |dr| <= pi/512 * 2^34 < 2^26.7 */
-    const int32_t dh = d >> 8, dl = d & 0xFF;
-    const int32_t dr = 25 * d + ((dh * EIGHT_PI_FRAC_Q19 + (1 << 10)) >> 11) +
-                       ((dl * EIGHT_PI_FRAC_Q19) >> 19);
-    /* d^2/2 in Q30 (<= 2^14.3) from |dr| in Q23 (< 2^15.7: the square fits 32 bits unsigned) */
-    const uint32_t u = ((uint32_t)(dr < 0 ? -dr : dr) + (1u << 10)) >> 11;
-    const int32_t half_d2 = (int32_t)((u * u + (1u << 16)) >> 17);
-    /* d^3/6 = d * (d^2/2) / 3 in Q34: (dr in Q22) * half_d2 -> Q52 */
-    const int32_t d3_2 = ((dr >> 12) * half_d2 + (1 << 17)) >> 18;
-    const int32_t sd = dr - (d3_2 < 0 ? -div3_small(-d3_2) : div3_small(d3_2)); /* Q34 */
-    const int32_t s0 = sin_tab[k], c0 = sin_tab[128u - k];
+    int32_t sd, half_d2, s0, c0;
+    offset_terms(d, &sd, &half_d2);
+    s0 = sin_tab[k];
+    c0 = sin_tab[128u - k];
     /* 1 - cos d terms: Q16 table value times half_d2, Q46 -> Q30 */
     const int32_t s_h = (int32_t)(((uint32_t)s0 >> 14) * (uint32_t)half_d2 >> 16);
     const int32_t c_h = (int32_t)(((uint32_t)c0 >> 14) * (uint32_t)half_d2 >> 16);
@@ -450,6 +461,23 @@ void xgo_sincos(xgo_bam_t a, xgo_q30_t *sin_out, xgo_q30_t *cos_out)
     if (cos_out != 0) {
         *cos_out = co;
     }
+}
+
+/* Near the node 0 (from -2^22 up to 2^22 BAM, signed: node 0 of the first
+ * quadrant or node 128 of the fourth) the table's values are 0 and 1, so
+ * xgo_sincos's products with them are shifts: sin a = round(sd / 16),
+ * cos a = 1 - d^2/2 (neither can need its clamp), the same values. */
+void xgo_sincos_near0(xgo_bam_t a, xgo_q30_t *sin_out, xgo_q30_t *cos_out)
+{
+    const int32_t d = xgo_bam_signed(a);
+    int32_t sd, half_d2;
+    if (d < -(1 << 22) || d >= (1 << 22)) {
+        xgo_sincos(a, sin_out, cos_out);
+        return;
+    }
+    offset_terms(d, &sd, &half_d2);
+    *sin_out = (sd + 8) >> 4;
+    *cos_out = XGO_Q30_ONE - half_d2;
 }
 
 xgo_q30_t xgo_sin(xgo_bam_t a)

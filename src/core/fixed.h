@@ -284,6 +284,10 @@ int32_t xgo_wrap_mdeg(int32_t mdeg);
  * 180, 270 degrees. Measured max error over all angles: 2.82 LSB of Q30
  * (2.6e-9); asserted bound 3.5 LSB. */
 void xgo_sincos(xgo_bam_t a, xgo_q30_t *sin_out, xgo_q30_t *cos_out);
+/* The same values for an angle near 0 (a tick's turn): from -2^22 up to
+ * 2^22 BAM (0.35 degrees) without the table's products (M0: about half
+ * the instructions); other angles go to xgo_sincos. Both outputs needed. */
+void xgo_sincos_near0(xgo_bam_t a, xgo_q30_t *sin_out, xgo_q30_t *cos_out);
 xgo_q30_t xgo_sin(xgo_bam_t a);
 xgo_q30_t xgo_cos(xgo_bam_t a);
 

@@ -151,7 +151,7 @@ static void fit_motion(const xgo_odometry_t *o, const xgo_vec3_t feet_um[XGO_LEG
         }
     }
     *dyaw = (cross == 0) ? 0 : xgo_bam_signed(xgo_atan2_64(cross, dot));
-    xgo_sincos((xgo_bam_t)*dyaw, &s, &c);
+    xgo_sincos_near0((xgo_bam_t)*dyaw, &s, &c); /* a tick's turn: small */
     /* n d = Sa - R Sb, in 1/256 um */
     {
         const int64_t rx = turn_round(c, sb[0], s, sb[1], 22u);
