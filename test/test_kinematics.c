@@ -871,6 +871,52 @@ static void test_body_rotation_next_is_the_rotation(void)
     TEST_ASSERT_TRUE(shortcut > 100000);
 }
 
+/* The masked body-to-machine transform: the measured legs as the full one
+ * gives them, each other one at the body centre's image (the full one's
+ * answer for a foot at the origin), whatever its input holds; random
+ * poses, feet near and far, every mask. */
+static void test_body_to_machine_legs_is_the_full_one(void)
+{
+    uint64_t seed = 0x1e95a5cULL;
+    long n;
+    for (n = 0; n < 100000; ++n) {
+        xgo_body_pose_t pose;
+        xgo_q30_t rot[XGO_ROT_COUNT];
+        xgo_vec3_t body[XGO_LEG_COUNT], zeroed[XGO_LEG_COUNT], full[XGO_LEG_COUNT], part[XGO_LEG_COUNT];
+        const unsigned mask = (unsigned)(n & 15);
+        const int far = (n & 64) != 0;
+        unsigned leg;
+        memset(&pose, 0, sizeof pose);
+        pose.roll_mdeg = (int32_t)(xgo_test_xorshift64(&seed) % 720001u) - 360000;
+        pose.pitch_mdeg = (int32_t)(xgo_test_xorshift64(&seed) % 720001u) - 360000;
+        pose.yaw_mdeg = (n & 32) ? (int32_t)(xgo_test_xorshift64(&seed) % 720001u) - 360000 : 0;
+        pose.x_um = (int32_t)(xgo_test_xorshift64(&seed) % 400001u) - 200000;
+        pose.y_um = (int32_t)(xgo_test_xorshift64(&seed) % 400001u) - 200000;
+        pose.z_um = (int32_t)(xgo_test_xorshift64(&seed) % 400001u) - 200000;
+        for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
+            const uint32_t span = far ? 0xFFFFFFFFu : 600001u;
+            body[leg].x = far ? (int32_t)(uint32_t)xgo_test_xorshift64(&seed)
+                              : (int32_t)(xgo_test_xorshift64(&seed) % span) - 300000;
+            body[leg].y = far ? (int32_t)(uint32_t)xgo_test_xorshift64(&seed)
+                              : (int32_t)(xgo_test_xorshift64(&seed) % span) - 300000;
+            body[leg].z = far ? (int32_t)(uint32_t)xgo_test_xorshift64(&seed)
+                              : (int32_t)(xgo_test_xorshift64(&seed) % span) - 300000;
+            zeroed[leg] = body[leg];
+            if (((mask >> leg) & 1u) == 0) {
+                zeroed[leg].x = zeroed[leg].y = zeroed[leg].z = 0;
+            }
+        }
+        xgo_body_rotation(&pose, rot);
+        xgo_body_to_machine_rotated(&pose, rot, zeroed, full);
+        xgo_body_to_machine_legs(&pose, rot, mask, body, part);
+        for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
+            TEST_ASSERT_EQUAL_INT32(full[leg].x, part[leg].x);
+            TEST_ASSERT_EQUAL_INT32(full[leg].y, part[leg].y);
+            TEST_ASSERT_EQUAL_INT32(full[leg].z, part[leg].z);
+        }
+    }
+}
+
 /* ------------------------------------------------------------ byte codes */
 
 /* The vendor library's encoder, as Python evaluates it in double. */
@@ -1070,6 +1116,7 @@ int main(void)
     RUN_TEST(test_body_ik_differences_beyond_int32);
     RUN_TEST(test_body_rotation_without_yaw_is_the_general_one);
     RUN_TEST(test_body_rotation_next_is_the_rotation);
+    RUN_TEST(test_body_to_machine_legs_is_the_full_one);
     RUN_TEST(test_byte_codes_match_the_vendor_library);
     RUN_TEST(test_twelve_register_blocks);
     RUN_TEST(test_ik_same_bits_as_before);

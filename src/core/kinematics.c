@@ -965,11 +965,28 @@ void xgo_body_to_machine_rotated(const xgo_body_pose_t *pose, const xgo_q30_t ro
                                  const xgo_vec3_t body_um[XGO_LEG_COUNT],
                                  xgo_vec3_t machine_um[XGO_LEG_COUNT])
 {
+    xgo_body_to_machine_legs(pose, rot, 0x0Fu, body_um, machine_um);
+}
+
+void xgo_body_to_machine_legs(const xgo_body_pose_t *pose, const xgo_q30_t rot[XGO_ROT_COUNT], unsigned legs,
+                              const xgo_vec3_t body_um[XGO_LEG_COUNT], xgo_vec3_t machine_um[XGO_LEG_COUNT])
+{
     int32_t q[XGO_ROT_COUNT];
     int leg;
     rot_q18(rot, q);
     for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
-        const int32_t bx = body_um[leg].x, by = body_um[leg].y, bz = body_um[leg].z;
+        int32_t bx, by, bz;
+        if (((legs >> leg) & 1u) == 0) {
+            /* the body centre's image (what a foot at (0, 0, 0) gives); the
+             * leg's body_um is not read */
+            machine_um[leg].x = pose->x_um;
+            machine_um[leg].y = pose->y_um;
+            machine_um[leg].z = pose->z_um;
+            continue;
+        }
+        bx = body_um[leg].x;
+        by = body_um[leg].y;
+        bz = body_um[leg].z;
         if (near3(bx, by, bz)) {
             machine_um[leg].x = sat_i32((int64_t)dot3_q18_cold(q[0], q[1], q[2], bx, by, bz) + pose->x_um);
             machine_um[leg].y = sat_i32((int64_t)dot3_q18_cold(q[3], q[4], q[5], bx, by, bz) + pose->y_um);

@@ -116,6 +116,12 @@ void xgo_body_to_machine(const xgo_body_pose_t *pose, const xgo_vec3_t body_um[X
 void xgo_body_to_machine_rotated(const xgo_body_pose_t *pose, const xgo_q30_t rot[XGO_ROT_COUNT],
                                  const xgo_vec3_t body_um[XGO_LEG_COUNT],
                                  xgo_vec3_t machine_um[XGO_LEG_COUNT]);
+/* The same for the legs in the mask legs (bit n: leg n) only, for the
+ * feet measured (odometry: the planted ones); each other leg gets the body
+ * centre's position, as xgo_body_to_machine_rotated gives a foot at (0, 0,
+ * 0), and its body_um is not read. */
+void xgo_body_to_machine_legs(const xgo_body_pose_t *pose, const xgo_q30_t rot[XGO_ROT_COUNT], unsigned legs,
+                              const xgo_vec3_t body_um[XGO_LEG_COUNT], xgo_vec3_t machine_um[XGO_LEG_COUNT]);
 
 /* Body IK then leg IK for all four legs. Returns a bit mask of the legs
  * whose target was projected (bit n = leg index n); 0 when all reached. */

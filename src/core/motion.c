@@ -174,8 +174,9 @@ static void feet_of_joints(const xgo_motion_t *m, xgo_vec3_t body[XGO_LEG_COUNT]
 
 #if XGO_WITH_ODOMETRY
 /* The feet in the body frame where the joints q put them (FK), for the
- * legs in mask; the others at the body's origin (not measured: only the
- * odometry leaves feet unmeasured, measure_feet). */
+ * legs in mask; the others left as they are (not measured: only the
+ * odometry leaves feet unmeasured, measure_feet, and xgo_body_to_machine_legs
+ * with the same mask does not read them). */
 static void feet_of_angles(const xgo_motion_t *m, const int32_t q[XGO_SERVO_COUNT], unsigned mask,
                            xgo_vec3_t body[XGO_LEG_COUNT])
 {
@@ -185,9 +186,7 @@ static void feet_of_angles(const xgo_motion_t *m, const int32_t q[XGO_SERVO_COUN
             xgo_vec3_t foot_leg;
             xgo_leg_fk(m->profile, (xgo_leg_t)leg, &q[XGO_JOINT_COUNT * leg], &foot_leg);
             xgo_leg_to_body(m->profile, (xgo_leg_t)leg, &foot_leg, &body[leg]);
-        } else {
-            body[leg].x = body[leg].y = body[leg].z = 0;
-        }
+        } /* the others are not read (xgo_body_to_machine_legs) */
     }
 }
 #endif
@@ -583,10 +582,11 @@ static void measure_machine(const xgo_motion_t *m, unsigned mask, xgo_vec3_t mac
 #if XGO_WITH_ODOMETRY
     feet_of_angles(m, m->servos.angle_mdeg, mask, body);
 #else /* every foot (the contacts are not known) */
-    (void)mask;
+    mask = 0x0Fu;
     feet_of_joints(m, body);
 #endif
-    xgo_body_to_machine_rotated(&m->pose, pose_rotation(m, rot), body, machine);
+    /* only the measured legs turned (a swing's start: two of four) */
+    xgo_body_to_machine_legs(&m->pose, pose_rotation(m, rot), mask, body, machine);
 }
 
 #if XGO_WITH_ODOMETRY
@@ -604,7 +604,7 @@ static XGO_OWN_FRAME void measure_later_feet(xgo_motion_t *m)
     }
     feet_of_angles(m, m->fk_later.q_mdeg, later, body);
     xgo_body_rotation(&m->fk_later.pose, rot);
-    xgo_body_to_machine_rotated(&m->fk_later.pose, rot, body, machine);
+    xgo_body_to_machine_legs(&m->fk_later.pose, rot, later, body, machine);
     for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
         if (((later >> leg) & 1u) != 0) {
             xgo_odometry_set_prev(&m->odom, leg, &machine[leg]);
