@@ -105,6 +105,29 @@ static void test_mul_w_q24_matches_the_wide_product(void)
     }
 }
 
+/* A velocity as a tick's step: the pieces' form (|v| < 2^20) and the
+ * product beyond, against the rounded wide product: the edges, every v
+ * near 0 and random values of every length. */
+static void test_ums_to_q8_tick_matches_the_wide_product(void)
+{
+    static const int32_t vs[] = { (1 << 20) - 1, -(1 << 20), 1 << 20, -(1 << 20) - 1, INT32_MAX, INT32_MIN,
+                                  1000000, -1000000, 0x7FFFF, -0x80000 };
+    uint32_t seed = 4242u;
+    size_t i;
+    int32_t v;
+    int k;
+    for (i = 0; i < sizeof vs / sizeof vs[0]; ++i) {
+        TEST_ASSERT_EQUAL_INT32(reference_mul_q(vs[i], K_UMS_TO_Q8_TICK_Q31, 31u), ums_to_q8_tick(vs[i]));
+    }
+    for (v = -70000; v <= 70000; ++v) {
+        TEST_ASSERT_EQUAL_INT32(reference_mul_q(v, K_UMS_TO_Q8_TICK_Q31, 31u), ums_to_q8_tick(v));
+    }
+    for (k = 0; k < 400000; ++k) {
+        v = (int32_t)lcg(&seed) >> (k & 15);
+        TEST_ASSERT_EQUAL_INT32(reference_mul_q(v, K_UMS_TO_Q8_TICK_Q31, 31u), ums_to_q8_tick(v));
+    }
+}
+
 /* The yaw widening: every yaw rate up to the reference, and beyond it (the
  * share saturates), against the division gait.h states. */
 static void test_yaw_widening_is_the_exact_division(void)
@@ -204,6 +227,7 @@ int main(void)
     UNITY_BEGIN();
     RUN_TEST(test_mul_q_u16_matches_the_wide_product);
     RUN_TEST(test_mul_w_q24_matches_the_wide_product);
+    RUN_TEST(test_ums_to_q8_tick_matches_the_wide_product);
     RUN_TEST(test_yaw_widening_is_the_exact_division);
     RUN_TEST(test_scale_q16_is_the_truncated_wide_product);
     RUN_TEST(test_quick_fit_only_settles_fitting_feet);

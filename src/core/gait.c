@@ -88,9 +88,6 @@ static const gait_table_t k_tables[XGO_GAIT_TYPE_COUNT] = {
       20000, 2, 60, NO_DWELL },
 };
 
-/* um/s -> 1/256 um per tick: 256 / TICKS_PER_S * 2^31, rounded (applied
- * with q = 31). */
-#define K_UMS_TO_Q8_TICK_Q31 ((int32_t)((((uint64_t)256u << 31) + TICKS_PER_S / 2u) / TICKS_PER_S))
 /* Largest body turn per stance: 30 degrees = 0.5236 rad. K_TURN maps a yaw
  * rate in rad/s Q24 to (|w| / turn) * 2 in Q11 after >> 32:
  * 2 / 0.5236 * 2^(11 + 32 - 24). */
@@ -609,7 +606,7 @@ static void stance_part(const gait_tick_t *x, int32_t pos_q8[2], uint32_t theta,
     }
     gait_tick_foot_velocity(x, pos_q8[0] >> 8, pos_q8[1] >> 8, f);
     for (c = 0; c < 2; ++c) {
-        pos_q8[c] -= mul_q(mul_q(f[c], K_UMS_TO_Q8_TICK_Q31, 31u), (int32_t)share, 16u);
+        pos_q8[c] -= mul_q(ums_to_q8_tick(f[c]), (int32_t)share, 16u);
     }
 }
 
@@ -697,7 +694,7 @@ static int lift_foot(xgo_gait_t *g, const gait_tick_t *x, int leg)
 XGO_ALWAYS_INLINE void stance_axis(xgo_gait_t *g, const gait_tick_t *x, int leg, int c, int32_t lim)
 {
     const int32_t nom = g->stance_um[leg][c] * 256;
-    int32_t p = g->pos_q8[leg][c] - mul_q(x->vf[leg][c], K_UMS_TO_Q8_TICK_Q31, 31u);
+    int32_t p = g->pos_q8[leg][c] - ums_to_q8_tick(x->vf[leg][c]);
     /* p > nom + lim or p < nom - lim: one unsigned compare (|p - nom| is a
      * stance box and a tick's travel, far inside int32) */
     if ((uint32_t)(p - nom) + (uint32_t)lim > 2u * (uint32_t)lim) {

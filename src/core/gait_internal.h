@@ -109,6 +109,32 @@ static inline int32_t mul_q(int32_t a, int32_t b, unsigned q)
     return mul_q_inline(a, b, q);
 }
 
+/* um/s -> 1/256 um per tick: 256 / TICKS_PER_S * 2^31, rounded (applied
+ * with q = 31). */
+#define K_UMS_TO_Q8_TICK_Q31 ((int32_t)((((uint64_t)256u << 31) + TICKS_PER_S / 2u) / TICKS_PER_S))
+
+/* mul_q(v, K_UMS_TO_Q8_TICK_Q31, 31): a velocity v (um/s) as 1/256 um per
+ * tick (a planted foot's step: four a trotting tick). On a Cortex-M0, for
+ * |v| < 2^20 (1 m/s: every foot's), from K's 10-bit pieces K = K2 2^20 +
+ * K1 2^10 + K0 (K2 < 2^11, checked below), every product and sum within
+ * int32:
+ *   floor((v K + 2^30) / 2^31)
+ *     = floor((v K2 + floor((v K1 + floor((v K0 + 2^30) / 2^10)) / 2^10)) / 2^11),
+ * exact: three MULS by constants instead of a call of the wide product.
+ * test_gait_arith compares it with mul_q. */
+XGO_ALWAYS_INLINE int32_t ums_to_q8_tick(int32_t v)
+{
+#if XGO_CORE_NARROW_CPU
+    if ((v >> 20) == (v >> 31)) {
+        const int32_t low = (v * (K_UMS_TO_Q8_TICK_Q31 & 1023) + (1 << 30)) >> 10;
+        const int32_t mid = (v * ((K_UMS_TO_Q8_TICK_Q31 >> 10) & 1023) + low) >> 10;
+        return (v * (K_UMS_TO_Q8_TICK_Q31 >> 20) + mid) >> 11;
+    }
+#endif
+    return mul_q(v, K_UMS_TO_Q8_TICK_Q31, 31u);
+}
+typedef char xgo_gait_ums_pieces_fit_[(K_UMS_TO_Q8_TICK_Q31 >> 20) < 2048 ? 1 : -1];
+
 /* mul_q(a, b, q) for 0 <= b < 2^16, any a, 1 <= q <= 31: the same result,
  * bit for bit (where mul_q's result wraps, this one wraps alike; callers
  * state why their b fits). On a Cortex-M0 the short factor saves half of the
