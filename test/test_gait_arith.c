@@ -128,6 +128,28 @@ static void test_ums_to_q8_tick_matches_the_wide_product(void)
     }
 }
 
+/* The swing basis' product over its whole range: a in [0, 2^26], |b| <
+ * 2^30, the edges and random pairs. */
+static void test_mul_q26_unit_matches_the_wide_product(void)
+{
+    static const int32_t as[] = { 0, 1, 8191, 8192, (1 << 25), (1 << 26) - 1, 1 << 26 };
+    static const int32_t bs[] = { 0, 1, -1, 8191, -8192, (1 << 30) - 1, -(1 << 30) + 1, -(1 << 30), 10 << 26,
+                                  -(9 << 26), 3 << 26 };
+    uint32_t seed = 2626u;
+    size_t i, j;
+    int k;
+    for (i = 0; i < sizeof as / sizeof as[0]; ++i) {
+        for (j = 0; j < sizeof bs / sizeof bs[0]; ++j) {
+            TEST_ASSERT_EQUAL_INT32(reference_mul_q(as[i], bs[j], 26u), mul_q26_unit(as[i], bs[j]));
+        }
+    }
+    for (k = 0; k < 1000000; ++k) {
+        const int32_t a = (int32_t)(lcg(&seed) % ((1u << 26) + 1u)) >> (k & 7);
+        const int32_t b = (int32_t)lcg(&seed) >> (2 + (k & 7));
+        TEST_ASSERT_EQUAL_INT32(reference_mul_q(a, b, 26u), mul_q26_unit(a, b));
+    }
+}
+
 /* The yaw widening: every yaw rate up to the reference, and beyond it (the
  * share saturates), against the division gait.h states. */
 static void test_yaw_widening_is_the_exact_division(void)
@@ -228,6 +250,7 @@ int main(void)
     RUN_TEST(test_mul_q_u16_matches_the_wide_product);
     RUN_TEST(test_mul_w_q24_matches_the_wide_product);
     RUN_TEST(test_ums_to_q8_tick_matches_the_wide_product);
+    RUN_TEST(test_mul_q26_unit_matches_the_wide_product);
     RUN_TEST(test_yaw_widening_is_the_exact_division);
     RUN_TEST(test_scale_q16_is_the_truncated_wide_product);
     RUN_TEST(test_quick_fit_only_settles_fitting_feet);

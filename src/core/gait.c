@@ -725,7 +725,7 @@ static int32_t land_follow(int32_t u)
         return 1 << 26;
     }
     r = 2 * (u - half); /* 0..1 over the second half, Q26 */
-    return (1 << 26) - mul_q(mul_q(r, r, 26u), 3 * (1 << 26) - 2 * r, 26u);
+    return (1 << 26) - mul_q26_unit(mul_q26_unit(r, r), 3 * (1 << 26) - 2 * r);
 }
 
 static void land_point(xgo_gait_t *g, int leg, int32_t follow, int32_t td[2])
@@ -769,10 +769,12 @@ static void swing_weights(const gait_table_t *t, uint32_t theta, gait_swing_weig
     const uint32_t psi = (uint32_t)(xgo_umul_wide(theta, t->inv_swing_q16) >> 16);
     const int32_t u = (int32_t)(psi >> 6);
     const int32_t w = dw == 0 ? u : clamp32(mul_q(u - dw, t->dwell_gain_q26, 26u), 0, one);
-    const int32_t w2 = mul_q(w, w, 26u), w3 = mul_q(w2, w, 26u);
-    const int32_t h = mul_q(w3, 10 * one - 15 * w + 6 * w2, 26u);
-    const int32_t a = w + mul_q(w3, -6 * one + 8 * w - 3 * w2, 26u);
-    const int32_t b = mul_q(w3, -4 * one + 7 * w - 3 * w2, 26u);
+    /* w, w^2, w^3 in [0, 1] and the polynomials below 10: mul_q26_unit's ranges */
+    XGO_ASSERT(w >= 0 && w <= one);
+    const int32_t w2 = mul_q26_unit(w, w), w3 = mul_q26_unit(w2, w);
+    const int32_t h = mul_q26_unit(w3, 10 * one - 15 * w + 6 * w2);
+    const int32_t a = w + mul_q26_unit(w3, -6 * one + 8 * w - 3 * w2);
+    const int32_t b = mul_q26_unit(w3, -4 * one + 7 * w - 3 * w2);
     xgo_q30_t s, co;
     wt->theta = theta;
     wt->h = h;

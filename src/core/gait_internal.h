@@ -109,6 +109,25 @@ static inline int32_t mul_q(int32_t a, int32_t b, unsigned q)
     return mul_q_inline(a, b, q);
 }
 
+/* mul_q(a, b, 26) for 0 <= a <= 2^26 and |b| < 2^30: the swing's basis
+ * (a Q26 value of [0, 1] - its progress, powers of it - times a Q26
+ * polynomial of it below 10). On a Cortex-M0 from 13-bit pieces, a = ah
+ * 2^13 + al, b = bh 2^13 + bl (0 <= al, bl < 2^13; ah <= 2^13, |bh| <
+ * 2^17): ab = P 2^26 + M 2^13 + L with P = ah bh (|P| <= 2^30), M = ah bl
+ * + al bh (|M| < 2^30 + 2^26) and L = al bl (< 2^26), so
+ *   floor((ab + 2^25) / 2^26) = P + floor((M + floor((L + 2^25) / 2^13)) / 2^13),
+ * every term within int32: four MULS inline instead of a call of the wide
+ * product. Elsewhere mul_q. The same value; test_gait_arith compares. */
+XGO_ALWAYS_INLINE int32_t mul_q26_unit(int32_t a, int32_t b)
+{
+#if XGO_CORE_NARROW_CPU
+    const int32_t ah = a >> 13, al = a & 8191, bh = b >> 13, bl = b & 8191;
+    return ah * bh + ((ah * bl + al * bh + ((al * bl + (1 << 25)) >> 13)) >> 13);
+#else
+    return mul_q(a, b, 26u);
+#endif
+}
+
 /* um/s -> 1/256 um per tick: 256 / TICKS_PER_S * 2^31, rounded (applied
  * with q = 31). */
 #define K_UMS_TO_Q8_TICK_Q31 ((int32_t)((((uint64_t)256u << 31) + TICKS_PER_S / 2u) / TICKS_PER_S))
