@@ -150,6 +150,29 @@ static void test_mul_q26_unit_matches_the_wide_product(void)
     }
 }
 
+/* A weight times a span: the pieces where both fit (|w| < 2^27, |b| <
+ * 2^29), mul_q beyond; the edges either side and random pairs. */
+static void test_mul_q26_weight_matches_the_wide_product(void)
+{
+    static const int32_t ws[] = { 0, 1, -1, 8191, -8192, 1 << 26, -(1 << 26), (1 << 27) - 1, -(1 << 27),
+                                  1 << 27, -(1 << 27) - 1, INT32_MAX, INT32_MIN };
+    static const int32_t bs[] = { 0, 1, -1, 8191, -8192, (1 << 29) - 1, -(1 << 29), 1 << 29, -(1 << 29) - 1,
+                                  51200000, -51200000, INT32_MAX, INT32_MIN };
+    uint32_t seed = 2727u;
+    size_t i, j;
+    int k;
+    for (i = 0; i < sizeof ws / sizeof ws[0]; ++i) {
+        for (j = 0; j < sizeof bs / sizeof bs[0]; ++j) {
+            TEST_ASSERT_EQUAL_INT32(reference_mul_q(ws[i], bs[j], 26u), mul_q26_weight(ws[i], bs[j]));
+        }
+    }
+    for (k = 0; k < 1000000; ++k) {
+        const int32_t w = (int32_t)lcg(&seed) >> (3 + (k & 7));
+        const int32_t b = (int32_t)lcg(&seed) >> (1 + ((k >> 3) & 7));
+        TEST_ASSERT_EQUAL_INT32(reference_mul_q(w, b, 26u), mul_q26_weight(w, b));
+    }
+}
+
 /* The yaw widening: every yaw rate up to the reference, and beyond it (the
  * share saturates), against the division gait.h states. */
 static void test_yaw_widening_is_the_exact_division(void)
@@ -251,6 +274,7 @@ int main(void)
     RUN_TEST(test_mul_w_q24_matches_the_wide_product);
     RUN_TEST(test_ums_to_q8_tick_matches_the_wide_product);
     RUN_TEST(test_mul_q26_unit_matches_the_wide_product);
+    RUN_TEST(test_mul_q26_weight_matches_the_wide_product);
     RUN_TEST(test_yaw_widening_is_the_exact_division);
     RUN_TEST(test_scale_q16_is_the_truncated_wide_product);
     RUN_TEST(test_quick_fit_only_settles_fitting_feet);

@@ -805,7 +805,8 @@ XGO_ALWAYS_INLINE void swing_axis(xgo_gait_t *g, const gait_tick_t *x, int leg, 
      * 2^16, swing_time) */
     const int32_t m0 = -mul_q_u16(f0, x->swing_q16, 8u);
     const int32_t m1 = -mul_q_u16(f1, x->swing_q16, 8u);
-    g->pos_q8[leg][c] = lift + mul_q(td - lift, wt->h, 26u) + mul_q(m0, wt->ca, 26u) + mul_q(m1, wt->cb, 26u);
+    g->pos_q8[leg][c] = lift + mul_q26_weight(wt->h, td - lift) + mul_q26_weight(wt->ca, m0) +
+                        mul_q26_weight(wt->cb, m1);
 }
 
 /* One swing foot's step on that curve. The weights depend on the phase

@@ -128,6 +128,22 @@ XGO_ALWAYS_INLINE int32_t mul_q26_unit(int32_t a, int32_t b)
 #endif
 }
 
+/* mul_q(w, b, 26) for a swing curve's weight w and a span b (1/256 um):
+ * the same pieces as mul_q26_unit where they fit int32, |w| < 2^27 and |b|
+ * < 2^29 (every weight is within [-1, 1] and every span within a few
+ * hundred mm: always while walking), else mul_q. (|P| <= 2^30 and |M| <
+ * 2^29 + 2^27 there.) The same value; test_gait_arith compares. */
+XGO_ALWAYS_INLINE int32_t mul_q26_weight(int32_t w, int32_t b)
+{
+#if XGO_CORE_NARROW_CPU
+    if ((w >> 27) == (w >> 31) && (b >> 29) == (b >> 31)) {
+        const int32_t wh = w >> 13, wl = w & 8191, bh = b >> 13, bl = b & 8191;
+        return wh * bh + ((wh * bl + wl * bh + ((wl * bl + (1 << 25)) >> 13)) >> 13);
+    }
+#endif
+    return mul_q(w, b, 26u);
+}
+
 /* um/s -> 1/256 um per tick: 256 / TICKS_PER_S * 2^31, rounded (applied
  * with q = 31). */
 #define K_UMS_TO_Q8_TICK_Q31 ((int32_t)((((uint64_t)256u << 31) + TICKS_PER_S / 2u) / TICKS_PER_S))
