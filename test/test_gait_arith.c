@@ -173,6 +173,25 @@ static void test_mul_q26_weight_matches_the_wide_product(void)
     }
 }
 
+/* A sine's square: every value near 0 and both ends, random ones between. */
+static void test_square_q30_matches_the_wide_product(void)
+{
+    uint32_t seed = 3030u;
+    int32_t s;
+    int k;
+    for (s = -100000; s <= 100000; ++s) {
+        TEST_ASSERT_EQUAL_INT32(reference_mul_q(s, s, 30u), square_q30(s));
+        TEST_ASSERT_EQUAL_INT32(reference_mul_q((1 << 30) - s - 100000, (1 << 30) - s - 100000, 30u),
+                                square_q30((1 << 30) - s - 100000));
+        TEST_ASSERT_EQUAL_INT32(reference_mul_q(-(1 << 30) + s + 100000, -(1 << 30) + s + 100000, 30u),
+                                square_q30(-(1 << 30) + s + 100000));
+    }
+    for (k = 0; k < 1000000; ++k) {
+        s = (int32_t)lcg(&seed) >> (1 + (k & 15));
+        TEST_ASSERT_EQUAL_INT32(reference_mul_q(s, s, 30u), square_q30(s));
+    }
+}
+
 /* The yaw widening: every yaw rate up to the reference, and beyond it (the
  * share saturates), against the division gait.h states. */
 static void test_yaw_widening_is_the_exact_division(void)
@@ -275,6 +294,7 @@ int main(void)
     RUN_TEST(test_ums_to_q8_tick_matches_the_wide_product);
     RUN_TEST(test_mul_q26_unit_matches_the_wide_product);
     RUN_TEST(test_mul_q26_weight_matches_the_wide_product);
+    RUN_TEST(test_square_q30_matches_the_wide_product);
     RUN_TEST(test_yaw_widening_is_the_exact_division);
     RUN_TEST(test_scale_q16_is_the_truncated_wide_product);
     RUN_TEST(test_quick_fit_only_settles_fitting_feet);

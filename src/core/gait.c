@@ -789,7 +789,7 @@ static void swing_weights(const gait_table_t *t, uint32_t theta, gait_swing_weig
         wt->cb = b - mul_q(b, 2 * dw, 26u) - dh + (u > one - dw ? u - (one - dw) : 0);
     }
     xgo_sincos(psi >> 1, &s, &co); /* angle pi * psi */
-    wt->s2 = mul_q(s, s, 30u);
+    wt->s2 = square_q30(s);
     wt->follow = land_follow(u);
 }
 

@@ -144,6 +144,23 @@ XGO_ALWAYS_INLINE int32_t mul_q26_weight(int32_t w, int32_t b)
     return mul_q(w, b, 26u);
 }
 
+/* mul_q(s, s, 30) for |s| <= 2^30 (a sine's square: the swing's lift).
+ * On a Cortex-M0 from 15-bit pieces of u = |s| = uh 2^15 + ul (uh <=
+ * 2^15): u^2 = uh^2 2^30 + 2 uh ul 2^15 + ul^2, so floor((u^2 + 2^29) /
+ * 2^30) = uh^2 + floor((2 uh ul + floor((ul^2 + 2^29) / 2^15)) / 2^15),
+ * the sum below 2^31 + 2^16 (unsigned): three MULS inline instead of a
+ * call of the wide product. The same value; test_gait_arith compares. */
+XGO_ALWAYS_INLINE int32_t square_q30(int32_t s)
+{
+#if XGO_CORE_NARROW_CPU
+    const uint32_t u = s < 0 ? 0u - (uint32_t)s : (uint32_t)s;
+    const uint32_t uh = u >> 15, ul = u & 0x7FFFu;
+    return (int32_t)(uh * uh + ((2u * uh * ul + ((ul * ul + (1u << 29)) >> 15)) >> 15));
+#else
+    return mul_q(s, s, 30u);
+#endif
+}
+
 /* um/s -> 1/256 um per tick: 256 / TICKS_PER_S * 2^31, rounded (applied
  * with q = 31). */
 #define K_UMS_TO_Q8_TICK_Q31 ((int32_t)((((uint64_t)256u << 31) + TICKS_PER_S / 2u) / TICKS_PER_S))
