@@ -12,6 +12,7 @@
 #include "board_io.h" /* xgo_test_xorshift* */
 #include "unity.h"
 #include "fixed.h"
+#include "wide.h" /* xgo_usquare_wide */
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -511,6 +512,27 @@ static void test_sincos_near0_is_sincos(void)
     }
 }
 
+/* The square's three-product form (the _narrow build's; the plain product
+ * elsewhere) against the 64-bit product: the edges of its pieces and
+ * random values of every length (its own draws: the others' stay). */
+static void test_usquare_wide_is_the_product(void)
+{
+    static const uint32_t us[] = {0u, 1u, 0xFFFFu, 0x10000u, 0x10001u, 0x7FFFFFFFu, 0x80000000u, 0x80000001u,
+                                  0xFFFEFFFFu, 0xFFFF0000u, 0xFFFFFFFFu, 0x0001FFFFu, 0x00017FFFu};
+    uint64_t state = 0x5a5a1234ULL;
+    size_t i;
+    long n;
+    for (i = 0; i < sizeof us / sizeof us[0]; ++i) {
+        TEST_ASSERT_TRUE(xgo_usquare_wide(us[i]) == (uint64_t)us[i] * us[i]);
+    }
+    for (n = 0; n < 2000000; ++n) {
+        const uint32_t u = (uint32_t)xgo_test_xorshift64(&state) >> (n & 31);
+        if (xgo_usquare_wide(u) != (uint64_t)u * u) {
+            TEST_ASSERT_EQUAL_UINT32(u, ~u); /* fails, naming u */
+        }
+    }
+}
+
 static void test_sincos_against_libm(void)
 {
     uint32_t i, k;
@@ -797,6 +819,7 @@ int main(void)
     RUN_TEST(test_angle_conversions);
     RUN_TEST(test_sincos_against_libm);
     RUN_TEST(test_sincos_near0_is_sincos);
+    RUN_TEST(test_usquare_wide_is_the_product);
     RUN_TEST(test_atan2_against_libm);
     RUN_TEST(test_atan2_64_against_libm);
     RUN_TEST(test_atan2_len30_against_libm);

@@ -53,13 +53,13 @@ static int64_t mul_cold(int32_t a, int32_t b)
     return xgo_mul_wide(a, b);
 }
 
-/* v^2: on a Cortex-M0 the unsigned product of |v| (no sign fix-ups),
- * elsewhere one multiply; the same value. */
+/* v^2: on a Cortex-M0 the unsigned square of |v| (no sign fix-ups, three
+ * MULS), elsewhere one multiply; the same value. */
 XGO_ALWAYS_INLINE int64_t square_wide(int32_t v)
 {
 #if XGO_CORE_NARROW_CPU
     const uint32_t u = v < 0 ? 0u - (uint32_t)v : (uint32_t)v;
-    return (int64_t)xgo_umul_wide(u, u);
+    return (int64_t)xgo_usquare_wide(u);
 #else
     return xgo_mul_wide(v, v);
 #endif

@@ -58,6 +58,17 @@ XGO_ALWAYS_INLINE uint64_t xgo_umul_wide(uint32_t a, uint32_t b)
     return ((uint64_t)hi << 32) | t;
 }
 
+/* u^2: the same from three MULS, the cross product taken once (u = uh
+ * 2^16 + ul: u^2 = uh^2 2^32 + uh ul 2^17 + ul^2, uh ul < 2^32). */
+XGO_ALWAYS_INLINE uint64_t xgo_usquare_wide(uint32_t u)
+{
+    const uint32_t ul = u & 0xFFFFu, uh = u >> 16;
+    const uint32_t lo = ul * ul, m = uh * ul;
+    const uint32_t t = lo + (m << 17);
+    const uint32_t hi = uh * uh + (m >> 15) + (t < lo ? 1u : 0u);
+    return ((uint64_t)hi << 32) | t;
+}
+
 /* Signed: the unsigned product of the two's-complement bit patterns, minus
  * 2^32 * b if a < 0 and 2^32 * a if b < 0 (modulo 2^64); the result is
  * exact since |a * b| <= 2^62. */
@@ -81,6 +92,11 @@ XGO_ALWAYS_INLINE int64_t xgo_mul_wide(int32_t a, int32_t b)
 XGO_ALWAYS_INLINE uint64_t xgo_umul_wide(uint32_t a, uint32_t b)
 {
     return (uint64_t)a * b;
+}
+
+XGO_ALWAYS_INLINE uint64_t xgo_usquare_wide(uint32_t u)
+{
+    return (uint64_t)u * u;
 }
 
 XGO_ALWAYS_INLINE int64_t xgo_mul_wide(int32_t a, int32_t b)
