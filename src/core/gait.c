@@ -413,6 +413,13 @@ static void limit_speed(xgo_gait_t *g, gait_tick_t *x)
 
 /* ------------------------------------------------------------ 2. ramp */
 
+/* ramp_velocity skips the ramp when the velocity is at its target, not when
+ * a step would not move it: the same test while every step is positive */
+typedef char xgo_gait_ramp_steps_positive[XGO_GAIT_ACCEL_UM_S2 / (int32_t)TICKS_PER_S > 0 &&
+                                                  XGO_GAIT_YAW_ACCEL_MDEG_S2 / (int32_t)TICKS_PER_S > 0
+                                              ? 1
+                                              : -1];
+
 /* The produced velocity steps toward the target by at most the ramp's
  * acceleration, as far as the governor lets it (gait_governor.c). A planted
  * foot's y reach only grows while it is down (with the yaw rate it sees). */
@@ -697,7 +704,7 @@ XGO_ALWAYS_INLINE void stance_axis(xgo_gait_t *g, const gait_tick_t *x, int leg,
     int32_t p = g->pos_q8[leg][c] - ums_to_q8_tick(x->vf[leg][c]);
     /* p > nom + lim or p < nom - lim: one unsigned compare (|p - nom| is a
      * stance box and a tick's travel, far inside int32) */
-    if ((uint32_t)(p - nom) + (uint32_t)lim > 2u * (uint32_t)lim) {
+    if ((uint32_t)p - (uint32_t)nom + (uint32_t)lim > 2u * (uint32_t)lim) {
         p = clamp32(p, nom - lim, nom + lim);
         g->clamped_ticks++;
     }

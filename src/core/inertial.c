@@ -24,6 +24,8 @@
                10000u))
 /* 1 g in LSB * 256: 2^22 */
 #define ONE_G_Q8 (XGO_ACCEL_LSB_PER_G * 256)
+/* xgo_inertial_tick_sc turns products by exactly 1 g into shifts */
+typedef char xgo_one_g_is_2_to_the_22[ONE_G_Q8 == (1 << 22) ? 1 : -1];
 /* Second differences beyond this (about 100 g at 500 Hz) saturate anyway. */
 #define D2_LIMIT_Q8 (1 << 20)
 
@@ -93,14 +95,14 @@ XGO_ALWAYS_INLINE int32_t mul_q30_rate(int32_t a, xgo_q30_t c) /* inline: 6 call
 }
 
 /* mul_q30 for a factor that may be large: the vertical specific force
- * (1 g is 2^22 in LSB * 256) and what it turns into, four products a tick
- * beyond mul_q30's 32-bit form. On a narrow core, for |a| < 2^23, from c's
+ * (1 g is 2^22 in LSB * 256) and what it turns into, up to four products a
+ * tick (two at a constant height on a narrow core, xgo_inertial_tick_sc) beyond mul_q30's 32-bit form. On a narrow core, for |a| < 2^23, from c's
  * 8-bit pieces, c = c3 2^24 + c2 2^16 + c1 2^8 + c0 (c3 = c >> 24, |c3| <=
  * 2^6; c2, c1, c0 in 0..255), each product and nested sum within int32
  * (|a ck| <= 255 (2^23 - 1) < 2^31 - 2^23, each carried floor below 2^23):
  *   floor(a c / 2^24) = a c3 + floor((a c2 + floor((a c1 + floor(a c0 / 2^8)) / 2^8)) / 2^8)
  * and floor((a c + 2^29) / 2^30) = floor((floor(a c / 2^24) + 2^5) / 2^6):
- * exact, four MULS instead of a 64-bit product. Out of line (four calls);
+ * exact, four MULS instead of a 64-bit product. Out of line (up to four calls);
  * not static, so test_inertial checks it against the 64-bit product. */
 int32_t xgo_inertial_mul_q30(int32_t a, xgo_q30_t c)
 {

@@ -456,11 +456,11 @@ HOST_INLINE void solve_branch(planar_t *pl, int32_t xq, int32_t wp, int32_t z, i
  * of line, so the inline lower one keeps the registers; elsewhere the call
  * of solve_branch itself (no frame more on the deepest stack path). */
 #if XGO_CORE_DIV64_NATIVE
-#define UPPER_FRAME XGO_OWN_FRAME static
+#define UPPER_BRANCH_FN XGO_OWN_FRAME static
 #else
-#define UPPER_FRAME XGO_ALWAYS_INLINE
+#define UPPER_BRANCH_FN XGO_ALWAYS_INLINE
 #endif
-UPPER_FRAME void solve_upper(planar_t *pl, int32_t xq, int32_t wp, int32_t z, int32_t h_abs, leg_solution_t *s)
+UPPER_BRANCH_FN void solve_upper(planar_t *pl, int32_t xq, int32_t wp, int32_t z, int32_t h_abs, leg_solution_t *s)
 {
     solve_branch(pl, xq, wp, z, h_abs, -1, s);
 }
