@@ -157,7 +157,7 @@ GAIT_PIECES_FN int32_t mul_q26_weight(int32_t w, int32_t b)
  * On a Cortex-M0 from 15-bit pieces of u = |s| = uh 2^15 + ul (uh <=
  * 2^15): u^2 = uh^2 2^30 + 2 uh ul 2^15 + ul^2, so floor((u^2 + 2^29) /
  * 2^30) = uh^2 + floor((2 uh ul + floor((ul^2 + 2^29) / 2^15)) / 2^15),
- * the sum below 2^31 + 2^16 (unsigned): three MULS inline instead of a
+ * the sum below 2^31 + 2^16 (unsigned): three MULS instead of a
  * call of the wide product. The same value; test_gait_arith compares. */
 GAIT_PIECES_FN int32_t square_q30(int32_t s)
 {
