@@ -174,7 +174,7 @@ XGO_ALWAYS_INLINE unsigned xgo_clz32_even(uint32_t v)
 }
 
 /* clz(v) for v != 0, inline as xgo_clz32_even. */
-XGO_ALWAYS_INLINE unsigned xgo_clz32_nz(uint32_t v)
+XGO_INLINE_FAST unsigned xgo_clz32_nz(uint32_t v)
 {
 #if XGO_CLZ_BUILTIN
     return (unsigned)__builtin_clz(v);

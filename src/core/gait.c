@@ -520,8 +520,8 @@ static uint32_t fit_cadence(xgo_gait_t *g, const gait_tick_t *x)
  * returns the rate, raised if the foot would cross the budget's edge before
  * it lifts at this one. Inline with the axis' fields: no arrays indexed by
  * the axis. */
-XGO_ALWAYS_INLINE uint32_t transient_axis(const gait_table_t *t, int32_t fm, int32_t off, uint32_t h,
-                                          uint32_t remaining, uint32_t rate)
+XGO_INLINE_FAST uint32_t transient_axis(const gait_table_t *t, int32_t fm, int32_t off, uint32_t h,
+                                        uint32_t remaining, uint32_t rate)
 {
     int32_t d;
     uint64_t travel;
@@ -803,8 +803,8 @@ static void swing_weights(const gait_table_t *t, uint32_t theta, gait_swing_weig
 /* One coordinate of a swing foot on the curve (swing_step), landing at
  * td, with the ground velocities f0 at the lift-off point and f1 at the
  * landing point. */
-XGO_ALWAYS_INLINE void swing_axis(xgo_gait_t *g, const gait_tick_t *x, int leg, int c, int32_t td, int32_t f0,
-                                  int32_t f1)
+XGO_INLINE_FAST void swing_axis(xgo_gait_t *g, const gait_tick_t *x, int leg, int c, int32_t td, int32_t f0,
+                                int32_t f1)
 {
     const gait_swing_weights_t *wt = &x->weights;
     const int32_t lift = g->lift_q8[leg][c];

@@ -234,7 +234,7 @@ XGO_ALWAYS_INLINE int32_t mul_q_u16(int32_t a, uint32_t b, unsigned q)
  * u = |v| = uh 2^16 + ul: floor(u lambda / 2^16) = uh lambda + floor(ul
  * lambda / 2^16), each product below 2^32 (no library multiply); elsewhere
  * the plain product. test/test_gait_arith.c checks it against the latter. */
-XGO_ALWAYS_INLINE int32_t gait_scale_q16(int32_t v, int32_t lambda)
+XGO_INLINE_FAST int32_t gait_scale_q16(int32_t v, int32_t lambda)
 {
 #if XGO_CORE_NARROW_CPU
     const uint32_t u = v < 0 ? 0u - (uint32_t)v : (uint32_t)v;
@@ -253,7 +253,7 @@ XGO_ALWAYS_INLINE int32_t gait_scale_q16(int32_t v, int32_t lambda)
  *   w p = (wh p + wl ph) 2^16 + wl pl,  |wh p| <= 2^30, |wl ph| < 2^20,
  * so floor((w p + 2^23) / 2^24) = (wh p + wl ph + floor(wl pl / 2^16) + 2^7) >> 8;
  * anything else takes the general product. test_gait_arith sweeps both. */
-XGO_ALWAYS_INLINE int32_t mul_w_q24(int32_t w, int32_t p)
+XGO_INLINE_FAST int32_t mul_w_q24(int32_t w, int32_t p)
 {
 #if XGO_CORE_NARROW_CPU
     if ((uint32_t)w + (1u << 26) < (1u << 27) && (uint32_t)p + (1u << 20) < (1u << 21)) {

@@ -55,7 +55,7 @@ static int64_t mul_cold(int32_t a, int32_t b)
 
 /* v^2: on a Cortex-M0 the unsigned square of |v| (no sign fix-ups, three
  * MULS), elsewhere one multiply; the same value. */
-XGO_ALWAYS_INLINE int64_t square_wide(int32_t v)
+XGO_INLINE_FAST int64_t square_wide(int32_t v)
 {
 #if XGO_CORE_NARROW_CPU
     const uint32_t u = v < 0 ? 0u - (uint32_t)v : (uint32_t)v;
@@ -356,7 +356,7 @@ static int32_t dot30(int32_t a, int32_t b, int32_t c, int32_t d);
  * M = ah bl + al bh + ch dl + cl dh and L = al bl + cl dl (< 2^31), each
  * MULS within int32, the floors nested exactly; half 2^29 (rounded: dot30)
  * or 0. For |a|, |b|, |c|, |d| <= 2^30 with the result within int32. */
-XGO_ALWAYS_INLINE int32_t dot_pieces(int32_t a, int32_t b, int32_t c, int32_t d, uint32_t half)
+XGO_INLINE_FAST int32_t dot_pieces(int32_t a, int32_t b, int32_t c, int32_t d, uint32_t half)
 {
     const int32_t ah = a >> 15, al = a & 0x7FFF, bh = b >> 15, bl = b & 0x7FFF;
     const int32_t ch = c >> 15, cl = c & 0x7FFF, dh = d >> 15, dl = d & 0x7FFF;

@@ -606,7 +606,7 @@ xgo_drop_reason_t xgo_regs_read(const xgo_regs_t *r, uint8_t addr, size_t n, uin
  * registers are computed, read-only; xgo_regs_init writes all three).
  * Every tick: a body held at a roll or a pitch, or not turning, spares the
  * encoding (about 40 instructions each on a Cortex-M0). */
-XGO_ALWAYS_INLINE void set_angle(xgo_regs_t *r, unsigned i, int32_t mdeg)
+XGO_INLINE_FAST void set_angle(xgo_regs_t *r, unsigned i, int32_t mdeg)
 {
     if (r->attitude_mdeg[i] != mdeg) {
         r->attitude_mdeg[i] = mdeg;

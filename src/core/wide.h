@@ -18,7 +18,7 @@
 
 #include <stdint.h>
 
-#include "compiler.h" /* XGO_ALWAYS_INLINE: a call would eat most of the gain */
+#include "compiler.h" /* XGO_ALWAYS_INLINE, XGO_INLINE_FAST */
 
 
 /* XGO_CORE_NARROW_CPU: a core without a divide instruction and without
@@ -44,8 +44,11 @@
 
 #if defined(XGO_WIDE_MUL_SPLIT) || defined(__ARM_ARCH_6M__) || defined(__ARM_ARCH_8M_BASE__)
 
+/* These products are a dozen or more instructions at each of many call
+ * sites: on a Cortex-M0 left to the compiler (XGO_INLINE_FAST). */
+
 /* Unsigned 32 x 32 -> 64 from 16-bit halves. */
-XGO_ALWAYS_INLINE uint64_t xgo_umul_wide(uint32_t a, uint32_t b)
+XGO_INLINE_FAST uint64_t xgo_umul_wide(uint32_t a, uint32_t b)
 {
     uint32_t al = a & 0xFFFFu, ah = a >> 16, bl = b & 0xFFFFu, bh = b >> 16;
     uint32_t lo = al * bl, hi = ah * bh;
@@ -60,7 +63,7 @@ XGO_ALWAYS_INLINE uint64_t xgo_umul_wide(uint32_t a, uint32_t b)
 
 /* u^2: the same from three MULS, the cross product taken once (u = uh
  * 2^16 + ul: u^2 = uh^2 2^32 + uh ul 2^17 + ul^2, uh ul < 2^32). */
-XGO_ALWAYS_INLINE uint64_t xgo_usquare_wide(uint32_t u)
+XGO_INLINE_FAST uint64_t xgo_usquare_wide(uint32_t u)
 {
     const uint32_t ul = u & 0xFFFFu, uh = u >> 16;
     const uint32_t lo = ul * ul, m = uh * ul;
@@ -72,7 +75,7 @@ XGO_ALWAYS_INLINE uint64_t xgo_usquare_wide(uint32_t u)
 /* Signed: the unsigned product of the two's-complement bit patterns, minus
  * 2^32 * b if a < 0 and 2^32 * a if b < 0 (modulo 2^64); the result is
  * exact since |a * b| <= 2^62. */
-XGO_ALWAYS_INLINE int64_t xgo_mul_wide(int32_t a, int32_t b)
+XGO_INLINE_FAST int64_t xgo_mul_wide(int32_t a, int32_t b)
 {
     uint64_t p = xgo_umul_wide((uint32_t)a, (uint32_t)b);
     uint32_t hi = (uint32_t)(p >> 32);
