@@ -109,15 +109,6 @@ static inline int32_t mul_q(int32_t a, int32_t b, unsigned q)
     return mul_q_inline(a, b, q);
 }
 
-/* The 16-bit-piece products below are each a few MULS: inline on a core
- * with a widening multiply, where they replace one instruction; on a
- * Cortex-M0 left to the compiler (at -Os out of line: about 580 bytes of
- * flash less for about 25 instructions a trotting tick). */
-#if XGO_CORE_NARROW_CPU
-#define GAIT_PIECES_FN static inline
-#else
-#define GAIT_PIECES_FN XGO_ALWAYS_INLINE
-#endif
 /* mul_q(a, b, 26) for 0 <= a <= 2^26 and |b| < 2^30: the swing's basis
  * (a Q26 value of [0, 1] - its progress, powers of it - times a Q26
  * polynomial of it below 10). On a Cortex-M0 from 13-bit pieces, a = ah
@@ -127,7 +118,7 @@ static inline int32_t mul_q(int32_t a, int32_t b, unsigned q)
  *   floor((ab + 2^25) / 2^26) = P + floor((M + floor((L + 2^25) / 2^13)) / 2^13),
  * every term within int32: four MULS instead of a call of the wide
  * product. Elsewhere mul_q. The same value; test_gait_arith compares. */
-GAIT_PIECES_FN int32_t mul_q26_unit(int32_t a, int32_t b)
+XGO_INLINE_FAST int32_t mul_q26_unit(int32_t a, int32_t b)
 {
 #if XGO_CORE_NARROW_CPU
     const int32_t ah = a >> 13, al = a & 8191, bh = b >> 13, bl = b & 8191;
@@ -142,7 +133,7 @@ GAIT_PIECES_FN int32_t mul_q26_unit(int32_t a, int32_t b)
  * < 2^29 (every weight is within [-1, 1] and every span within a few
  * hundred mm: always while walking), else mul_q. (|P| <= 2^30 and |M| <
  * 2^29 + 2^27 there.) The same value; test_gait_arith compares. */
-GAIT_PIECES_FN int32_t mul_q26_weight(int32_t w, int32_t b)
+XGO_INLINE_FAST int32_t mul_q26_weight(int32_t w, int32_t b)
 {
 #if XGO_CORE_NARROW_CPU
     if ((w >> 27) == (w >> 31) && (b >> 29) == (b >> 31)) {
@@ -159,7 +150,7 @@ GAIT_PIECES_FN int32_t mul_q26_weight(int32_t w, int32_t b)
  * 2^30) = uh^2 + floor((2 uh ul + floor((ul^2 + 2^29) / 2^15)) / 2^15),
  * the sum below 2^31 + 2^16 (unsigned): three MULS instead of a
  * call of the wide product. The same value; test_gait_arith compares. */
-GAIT_PIECES_FN int32_t square_q30(int32_t s)
+XGO_INLINE_FAST int32_t square_q30(int32_t s)
 {
 #if XGO_CORE_NARROW_CPU
     const uint32_t u = s < 0 ? 0u - (uint32_t)s : (uint32_t)s;
@@ -183,7 +174,7 @@ GAIT_PIECES_FN int32_t square_q30(int32_t s)
  *     = floor((v K2 + floor((v K1 + floor((v K0 + 2^30) / 2^10)) / 2^10)) / 2^11),
  * exact: three MULS by constants instead of a call of the wide product.
  * test_gait_arith compares it with mul_q. */
-GAIT_PIECES_FN int32_t ums_to_q8_tick(int32_t v)
+XGO_INLINE_FAST int32_t ums_to_q8_tick(int32_t v)
 {
 #if XGO_CORE_NARROW_CPU
     if ((v >> 20) == (v >> 31)) {
