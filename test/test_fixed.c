@@ -794,8 +794,14 @@ static void test_atan2_64_same_bits_everywhere(void)
         }
     }
     for (k = 0; k < 4000000u; ++k) {
-        const int64_t y = (int64_t)xgo_test_xorshift64(&state) >> (xgo_test_xorshift64(&state) % 63u);
-        int64_t x = (int64_t)xgo_test_xorshift64(&state) >> (xgo_test_xorshift64(&state) % 63u);
+        /* one draw a statement: the order of two calls in one expression is
+         * unspecified, and compilers differ (the digest must not) */
+        const uint64_t ry = xgo_test_xorshift64(&state);
+        const uint64_t sy = xgo_test_xorshift64(&state) % 63u;
+        const uint64_t rx = xgo_test_xorshift64(&state);
+        const uint64_t sx = xgo_test_xorshift64(&state) % 63u;
+        const int64_t y = (int64_t)ry >> sy;
+        int64_t x = (int64_t)rx >> sx;
         if ((k & 7u) == 0u) { /* the larger just below a rounding up to 2^25 at its length */
             const unsigned len = 33u + xgo_test_xorshift64(&state) % 30u;
             x = (((int64_t)1 << len) - 1 - (int64_t)(xgo_test_xorshift64(&state) % 1000u)) * ((k & 8u) ? -1 : 1);
