@@ -167,20 +167,15 @@ XGO_INLINE_FAST int32_t square_q30(int32_t s)
 
 /* mul_q(v, K_UMS_TO_Q8_TICK_Q31, 31): a velocity v (um/s) as 1/256 um per
  * tick (a planted foot's step: four a trotting tick). On a Cortex-M0, for
- * |v| < 2^20 (1 m/s: every foot's), from K's 10-bit pieces K = K2 2^20 +
- * K1 2^10 + K0 (K2 < 2^11, checked below), every product and sum within
- * int32:
- *   floor((v K + 2^30) / 2^31)
- *     = floor((v K2 + floor((v K1 + floor((v K0 + 2^30) / 2^10)) / 2^10)) / 2^11),
- * exact: three MULS by constants instead of a call of the wide product.
+ * |v| < 2^20 (1 m/s: every foot's), from K's 10-bit pieces
+ * (xgo_mul_round_pieces10, wide.h; K >> 20 < 2^11, checked below): three
+ * MULS by constants instead of a call of the wide product.
  * test_gait_arith compares it with mul_q. */
 XGO_INLINE_FAST int32_t ums_to_q8_tick(int32_t v)
 {
 #if XGO_CORE_NARROW_CPU
     if ((v >> 20) == (v >> 31)) {
-        const int32_t low = (v * (K_UMS_TO_Q8_TICK_Q31 & 1023) + (1 << 30)) >> 10;
-        const int32_t mid = (v * ((K_UMS_TO_Q8_TICK_Q31 >> 10) & 1023) + low) >> 10;
-        return (v * (K_UMS_TO_Q8_TICK_Q31 >> 20) + mid) >> 11;
+        return xgo_mul_round_pieces10(v, K_UMS_TO_Q8_TICK_Q31, 31u);
     }
 #endif
     return mul_q(v, K_UMS_TO_Q8_TICK_Q31, 31u);

@@ -58,21 +58,16 @@ static int16_t to_lsb(int32_t q8)
 /* a * q30 value, result in the unit of a: (a c + 2^29) >> 30.
  * On a core without a widening multiply (XGO_CORE_NARROW_CPU) a small a
  * (|a| < 2^20: every rate, a walk's horizontal accelerations) takes three
- * 32-bit products with c's 10-bit pieces, c = c2 2^20 + c1 2^10 + c0
- * (|c2| <= 2^10; 0 <= c1, c0 < 2^10), each of magnitude <= 2^30:
- *   floor((a c + 2^29) / 2^30)
- *     = floor((a c2 + floor((a c1 + floor((a c0 + 2^29) / 2^10)) / 2^10)) / 2^10)
- * with every sum below 2^30 + 2^21 (int32): exact, so the same result as
- * the 64-bit product (tools/mcu/run.sh compares). The range tests here
+ * 32-bit products with c's 10-bit pieces (xgo_mul_round_pieces10, wide.h;
+ * |c >> 20| <= 2^10 for a Q30 factor): exact, so the same result as the
+ * 64-bit product (tools/mcu/run.sh compares). The range tests here
  * are (a >> k) == (a >> 31), i.e. -2^k <= a < 2^k: two shifts, no
  * constants to load on the M0. */
 XGO_ALWAYS_INLINE int32_t mul_q30(int32_t a, xgo_q30_t c) /* inline: 18 calls a tick */
 {
 #if XGO_CORE_NARROW_CPU
     if ((a >> 20) == (a >> 31)) {
-        const int32_t low = (a * (c & 1023) + (1 << 29)) >> 10;
-        const int32_t mid = (a * ((c >> 10) & 1023) + low) >> 10;
-        return (a * (c >> 20) + mid) >> 10;
+        return xgo_mul_round_pieces10(a, c, 30u); /* |c >> 20| <= 2^10 */
     }
 #endif
     return (int32_t)((xgo_mul_wide(a, c) + (1 << 29)) >> 30);

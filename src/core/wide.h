@@ -109,6 +109,21 @@ XGO_ALWAYS_INLINE int64_t xgo_mul_wide(int32_t a, int32_t b)
 
 #endif
 
+/* floor((a c + 2^(q-1)) / 2^q), 21 <= q <= 31, for |a| < 2^20 and |c >>
+ * 20| < 2^11, without a wide product: from c's 10-bit pieces, c = c2 2^20
+ * + c1 2^10 + c0 (0 <= c1, c0 < 2^10),
+ *   floor((a c2 + floor((a c1 + floor((a c0 + 2^(q-1)) / 2^10)) / 2^10)) / 2^(q-20)),
+ * each product and nested sum within int32: exact, three MULS (by
+ * constants when c is one). For a Cortex-M0's hot products (the IMU
+ * model's rotations, the gait's planted-foot steps); callers check the
+ * range of a and fall back to the wide product beyond it. */
+XGO_ALWAYS_INLINE int32_t xgo_mul_round_pieces10(int32_t a, int32_t c, unsigned q)
+{
+    const int32_t low = (a * (c & 1023) + (1 << (q - 1u))) >> 10;
+    const int32_t mid = (a * ((c >> 10) & 1023) + low) >> 10;
+    return (a * (c >> 20) + mid) >> (q - 20u);
+}
+
 /* Variable shifts of 64-bit values are libgcc calls on a Cortex-M0
  * (__aeabi_llsl/llsr/lasr, about 12 instructions plus the call) and a
  * dozen conditional instructions on a Cortex-M3; where the result fits 32
