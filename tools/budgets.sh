@@ -28,7 +28,7 @@ row() { printf '  %-44s %12s   goal %s\n' "$1" "$2" "$3"; }
 
 cmake --build "$host" -j2 --target bench_board bench_kinematics bench_parser >/dev/null
 
-echo "== x86-64 (gcc, the core at -O3 as the host build makes it; callgrind)"
+echo "== x86-64 (gcc, the core at -O3 and -flto as the host build makes it; callgrind)"
 a=$(collected --toggle-collect=xgo_board_tick "$host/bench_board" 1000)
 b=$(collected --toggle-collect=xgo_board_tick "$host/bench_board" 11000)
 row "xgo_board_tick, trot + body pose" "$(((b - a) / 10000))" "<= 5,000"
