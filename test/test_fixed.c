@@ -13,6 +13,11 @@
 #include "unity.h"
 #include "fixed.h"
 #include "wide.h" /* xgo_usquare_wide */
+/* fixed.h's bodies as the leg IK inlines them on a 64-bit host (the same
+ * code as the out-of-line functions: test_inline_bodies_are_the_functions) */
+#define XGO_FIXED_BODIES
+#define XGO_FIXED_INLINE
+#include "fixed.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -603,6 +608,31 @@ static void test_sqrt64_near_within_units_of_the_floor(void)
     TEST_ASSERT_TRUE(worst <= 6u);
 }
 
+/* xgo_sqrt64_near's exact values (not only their distance from the
+ * floor): 2 * 10^6 random x of every bit length and a high word at every
+ * step of the table's chord, folded into one digest. The golden digest was
+ * taken from the code before the chord lost its clamp to 65535 (3fcb945),
+ * which never acted. */
+#define SQRT64_NEAR_DIGEST 0xf36298ef851547deull
+
+static void test_sqrt64_near_same_bits_as_before(void)
+{
+    uint64_t state = 0x9E3779B97F4A7C15ull, digest = 0;
+    uint32_t k, m;
+    for (k = 0; k < 2000000u; ++k) {
+        /* one draw a statement (the order of calls in an expression is unspecified) */
+        const uint64_t hi = xgo_test_xorshift64(&state);
+        const uint64_t lo = xgo_test_xorshift64(&state);
+        const unsigned s = xgo_test_xorshift64(&state) % 64u;
+        digest = (digest ^ xgo_sqrt64_near(((hi << 32) | lo) >> s)) * 0x100000001B3ull;
+    }
+    for (m = 0x40000000u; m >= 0x40000000u; m += 0x200u) { /* up to the wrap past 2^32 */
+        digest = (digest ^ xgo_sqrt64_near(((uint64_t)m << 32) | (m ^ 0x5A5A5A5Au))) * 0x100000001B3ull;
+    }
+    printf("xgo_sqrt64_near digest 0x%016llx\n", (unsigned long long)digest);
+    TEST_ASSERT_TRUE(digest == SQRT64_NEAR_DIGEST);
+}
+
 /* ------------------------------------------------------------ atan2 */
 
 #define BOUND_LEN30 52.0 /* xgo_atan2_len30: measured 44.8 LSB (docs/fixed-point.md) */
@@ -812,6 +842,32 @@ static void test_atan2_64_same_bits_everywhere(void)
     TEST_ASSERT_TRUE(digest == ATAN2_64_DIGEST);
 }
 
+/* The inline bodies (fixed.h, XGO_FIXED_INLINE: the leg IK's on a 64-bit
+ * host) give the out-of-line functions' values, the narrow atan2_64 case
+ * (both below 2^32, handed to the function) included: random arguments of
+ * every bit length and sign, and the len30 domain's vectors. */
+static void test_inline_bodies_are_the_functions(void)
+{
+    uint64_t state = 0x0DDBA11CAFEF00Dull;
+    uint32_t k;
+    for (k = 0; k < 1000000u; ++k) {
+        const uint64_t a = xgo_test_xorshift64(&state);
+        const uint64_t b = xgo_test_xorshift64(&state);
+        const uint64_t c = xgo_test_xorshift64(&state);
+        const uint64_t d = xgo_test_xorshift64(&state);
+        const unsigned sy = xgo_test_xorshift64(&state) % 64u;
+        const unsigned sx = xgo_test_xorshift64(&state) % 64u;
+        const int64_t y = (int64_t)((a << 32) | b) >> sy, x = (int64_t)((c << 32) | d) >> sx;
+        const int32_t ly = (int32_t)(a & 0x7FFFFFFFu) - (1 << 30), lx = (int32_t)(c & 0x7FFFFFFFu) - (1 << 30);
+        TEST_ASSERT_EQUAL_UINT32(xgo_sqrt64_near((uint64_t)x), xgo_sqrt64_near_inline((uint64_t)x));
+        TEST_ASSERT_EQUAL_UINT32(xgo_atan2_64(y, x), xgo_atan2_64_inline(y, x));
+        const uint64_t len2 = (uint64_t)((int64_t)ly * ly) + (uint64_t)((int64_t)lx * lx);
+        if (len2 >= (1ull << 58) && len2 <= (1ull << 60)) { /* length in [2^29, 2^30] */
+            TEST_ASSERT_EQUAL_UINT32(xgo_atan2_len30(ly, lx), xgo_atan2_len30_inline(ly, lx));
+        }
+    }
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -833,5 +889,7 @@ int main(void)
     RUN_TEST(test_clz_forms); /* last: the others' random draws as before */
     RUN_TEST(test_mdeg_to_bam_every_short_value);
     RUN_TEST(test_atan2_64_same_bits_everywhere);
+    RUN_TEST(test_sqrt64_near_same_bits_as_before);
+    RUN_TEST(test_inline_bodies_are_the_functions);
     return UNITY_END();
 }

@@ -322,3 +322,406 @@ xgo_bam_t xgo_acos(xgo_q30_t x);
 #endif
 
 #endif /* XGO_FIXED_H */
+
+/* ------------------------------------------------------------ bodies
+ *
+ * The bodies of xgo_sqrt64_near, xgo_atan2_len30 and xgo_atan2_64 with
+ * what they use (tables, the octant's arctangent), for fixed.c and, on a
+ * 64-bit host, for the leg IK as well (kinematics.c), which inlines them:
+ * 20 calls a control tick, where the calls, their argument moves and the
+ * registers saved around them were about a sixth of the work. A file gets
+ * them by defining XGO_FIXED_BODIES before it includes this header (or
+ * includes it again: this part has its own guard). With XGO_FIXED_INLINE
+ * defined as well (the leg IK) the helpers are forced inline and
+ * xgo_atan2_64_inline leaves its rare narrow case (both components below
+ * 2^32) to the out-of-line function; without it (fixed.c) they are
+ * static, as they were in fixed.c (the compiler decides: the out-of-line
+ * functions' code is unchanged).
+ */
+#if defined(XGO_FIXED_BODIES) && !defined(XGO_FIXED_BODIES_INCLUDED)
+#define XGO_FIXED_BODIES_INCLUDED
+
+#ifdef XGO_FIXED_INLINE
+#define XGO_FIXED_HOT XGO_ALWAYS_INLINE
+#else
+#define XGO_FIXED_HOT static
+#endif
+
+/* ---- square root */
+
+/* round(sqrt((32 + i) * 2^25)) - 2^15, i = 0..96: the square root of a
+ * normalised 32-bit value m in [2^30, 2^32) at 96 equal steps of m (the
+ * chord between two entries is within 2 of floor(sqrt(m))). */
+static const uint16_t sqrt_tab[97] = {
+    0, 508, 1008, 1502, 1988, 2467, 2940, 3407, 3868, 4323, 4772, 5217, 5656, 6090, 6519, 6944,
+    7364, 7780, 8192, 8600, 9003, 9403, 9799, 10191, 10580, 10965, 11347, 11726, 12101, 12474,
+    12843, 13209, 13573, 13934, 14291, 14647, 14999, 15349, 15697, 16041, 16384, 16724, 17062,
+    17398, 17731, 18062, 18391, 18718, 19043, 19366, 19686, 20005, 20322, 20637, 20951, 21262,
+    21572, 21879, 22186, 22490, 22793, 23094, 23394, 23691, 23988, 24283, 24576, 24868, 25158,
+    25447, 25735, 26021, 26305, 26589, 26871, 27151, 27431, 27709, 27985, 28261, 28535, 28808,
+    29080, 29351, 29620, 29889, 30156, 30422, 30687, 30951, 31214, 31475, 31736, 31995, 32254,
+    32511, 32768,
+};
+
+/* The table's chord for m in [2^30, 2^32): within 2 of floor(sqrt(m))
+ * (isqrt_norm32 without its exact steps). Never above 65535, so no clamp:
+ * i <= 95 and f < 2^16 give y < 32768 + sqrt_tab[i + 1] <= 65536. */
+XGO_FIXED_HOT uint32_t sqrt_chord32(uint32_t m)
+{
+    const uint32_t i = (m >> 25) - 32u, f = (m >> 9) & 0xFFFFu;
+    const uint32_t a = sqrt_tab[i], b = sqrt_tab[i + 1u];
+    return 32768u + a + (((b - a) * f) >> 16); /* (b - a) < 2^9 */
+}
+
+#if XGO_CORE_NARROW_CPU
+/* round(2^30 / sqrt((32 + i) * 2^25)), i = 0..96: the reciprocal of
+ * sqrt_tab's roots at the same nodes (16384..32768). */
+static const uint16_t rsqrt_tab[97] = {
+    32768, 32268, 31790, 31332, 30894, 30474, 30070, 29682, 29309, 28949, 28602, 28268, 27945,
+    27632, 27330, 27038, 26755, 26481, 26214, 25956, 25705, 25462, 25225, 24994, 24770, 24552,
+    24339, 24132, 23930, 23733, 23541, 23354, 23170, 22992, 22817, 22646, 22479, 22315, 22155,
+    21999, 21845, 21695, 21548, 21404, 21263, 21124, 20988, 20855, 20724, 20596, 20470, 20346,
+    20225, 20106, 19988, 19873, 19760, 19649, 19539, 19431, 19326, 19221, 19119, 19018, 18919,
+    18821, 18725, 18630, 18536, 18444, 18354, 18264, 18176, 18090, 18004, 17920, 17837, 17755,
+    17674, 17594, 17515, 17438, 17361, 17285, 17211, 17137, 17064, 16992, 16921, 16851, 16782,
+    16714, 16646, 16579, 16514, 16448, 16384,
+};
+#endif
+
+/* floor(n / y) for the Newton step of xgo_sqrt64_near: y within a few units
+ * of sqrt(m) for m in [2^30, 2^32), the quotient below 2^16. One
+ * instruction with a divider; without one (Cortex-M0: libgcc's division is
+ * about 100 instructions) an estimate with the reciprocal of sqrt(m) from a
+ * table and its chord (within about 10 of the quotient), made exact by
+ * stepping on the remainder, which fits int32 (|error| * y < 2^20). The
+ * same value either way. */
+XGO_FIXED_HOT uint32_t newton_quotient(uint32_t n, uint32_t y, uint32_t m)
+{
+#if XGO_CORE_NARROW_CPU
+    const uint32_t i = (m >> 25) - 32u, f = (m >> 9) & 0xFFFFu;
+    const uint32_t a = rsqrt_tab[i], b = rsqrt_tab[i + 1u];
+    const uint32_t r = a - (((a - b) * f) >> 16);  /* ~ 2^30 / y, <= 2^15 */
+    uint32_t q = ((n >> 16) * r) >> 14;            /* < 2^31 before the shift */
+    int32_t rem = (int32_t)(n - q * y);            /* modulo 2^32: small, exact */
+    while (rem < 0) {
+        --q;
+        rem += (int32_t)y;
+    }
+    while (rem >= (int32_t)y) {
+        ++q;
+        rem -= (int32_t)y;
+    }
+    return q;
+#else
+    (void)m;
+    return n / y;
+#endif
+}
+XGO_ALWAYS_INLINE uint32_t xgo_sqrt64_near_inline(uint64_t x)
+{
+    uint32_t hi = (uint32_t)(x >> 32), lo, y0, rem, y;
+    unsigned s;
+    if (hi == 0u) {
+        return xgo_isqrt32((uint32_t)x);
+    }
+    s = xgo_clz32_even(hi);
+    x = xgo_shl64(x, s); /* [2^62, 2^64) */
+    hi = (uint32_t)(x >> 32);
+    lo = (uint32_t)x;
+    y0 = sqrt_chord32(hi);
+    if (y0 * y0 > hi) { /* at most one above the floor: the remainder >= 0 */
+        --y0;
+    }
+    rem = hi - y0 * y0; /* < 6 y0 < 2^19 (y0 down to 2 below the floor) */
+    /* the Newton step in units of 4 so the dividend fits 32 bits */
+    y = (y0 << 16) + (newton_quotient((rem << 13) + (lo >> 19), y0, hi) << 2);
+    return (y < (y0 << 16) ? 0xFFFFFFFFu : y) >> (s / 2u);
+}
+/* ---- atan2 */
+
+/* atan(i / 32) in BAM, i = 0..32 (0 .. 45 degrees). */
+static const uint32_t atan_tab[33] = {
+    0, 21354465, 42667331, 63897482, 85004756, 105950391, 126697423, 147211045, 167458907,
+    187411349, 207041579, 226325781, 245243172, 263775993, 281909457, 299631651, 316933406,
+    333808132, 350251643, 366261957, 381839095, 396984877, 411702716, 425997422, 439875013,
+    453342536, 466407904, 479079736, 491367227, 503280012, 514828063, 526021581, 536870912,
+};
+
+/* 4 / pi - 1 in Q16 (17906.99): radians -> BAM is * 2^32 / (2 pi), for a
+ * value in Q29 that is * 4 / pi. */
+#define FOUR_PI_FRAC_Q16 17907
+
+#if XGO_CORE_NARROW_CPU
+/* round(2^39 / ((k + 16.5) * 2^19)), k = 0..48: 32 / ux at the middle of
+ * each 2^19-wide step of ux in [2^23, 2^25], scaled by 2^24. */
+static const uint16_t node_recip[49] = {
+    63550, 59919, 56680, 53773, 51150, 48771, 46603, 44620, 42799, 41121, 39569, 38130, 36792,
+    35545, 34380, 33288, 32264, 31301, 30394, 29537, 28728, 27962, 27236, 26546, 25891, 25267,
+    24672, 24105, 23564, 23046, 22550, 22075, 21620, 21183, 20764, 20361, 19973, 19600, 19240,
+    18893, 18559, 18236, 17924, 17623, 17332, 17050, 16777, 16513, 16257,
+};
+#endif
+
+/* floor((32 uy + floor(ux / 2)) / ux), the nearest node index, for ux in
+ * [2^23, 2^25] and uy <= ux (any node near the ratio would do; the nearest
+ * keeps the residual within 1/64). Without a divider: an estimate by a
+ * multiply with the reciprocal of ux's 2^19-wide step (off the ratio by
+ * less than 1/33 of it: within one of the quotient), made exact by a
+ * compare each way. */
+XGO_FIXED_HOT uint32_t nearest_node(uint32_t uy, uint32_t ux)
+{
+    const uint32_t n = (uy << 5) + (ux >> 1); /* < 2^31 */
+#if XGO_CORE_NARROW_CPU
+    uint32_t i = ((uy >> 10) * node_recip[(ux >> 19) - 16u] + (1u << 23)) >> 24;
+    const int32_t r = (int32_t)n - (int32_t)(i * ux); /* in [-ux, 2 ux) */
+    if (r < 0) {
+        --i;
+    } else if ((uint32_t)r >= ux) {
+        ++i;
+    }
+    return i;
+#else
+    return n / ux;
+#endif
+}
+
+#if !XGO_CORE_DIV64_NATIVE && !XGO_CORE_NARROW_CPU
+/* floor(n * 2^32 / d) for n < d < 2^31, and its remainder, on a core that
+ * divides 32-bit numbers in hardware but not 64-bit ones (Cortex-M3/M4):
+ * long division in two 16-bit digits (Hacker's Delight's divlu, with a zero
+ * low word), two hardware divisions instead of a libgcc call. */
+static uint32_t div_shifted(uint32_t n, uint32_t d, uint32_t *rem)
+{
+    const unsigned s = xgo_clz32(d); /* >= 1: normalise the divisor */
+    const uint32_t v = d << s, vn1 = v >> 16, vn0 = v & 0xFFFFu;
+    const uint32_t u1 = n << s; /* < v */
+    uint32_t q1 = u1 / vn1, rhat = u1 - q1 * vn1;
+    uint32_t un21, q0;
+    /* each digit estimate is at most 2 too large: correct it */
+    while (q1 > 0xFFFFu || q1 * vn0 > (rhat << 16)) {
+        --q1;
+        rhat += vn1;
+        if (rhat > 0xFFFFu) {
+            break;
+        }
+    }
+    un21 = (u1 << 16) - q1 * v; /* modulo 2^32: the true value is < v */
+    q0 = un21 / vn1;
+    rhat = un21 - q0 * vn1;
+    while (q0 > 0xFFFFu || q0 * vn0 > (rhat << 16)) {
+        --q0;
+        rhat += vn1;
+        if (rhat > 0xFFFFu) {
+            break;
+        }
+    }
+    *rem = ((un21 << 16) - q0 * v) >> s;
+    return (q1 << 16) | q0;
+}
+#endif
+
+#if XGO_CORE_NARROW_CPU
+/* round(2^22 / (128 + k)), k = 0..129: 2^45 / x at the 128 equal steps of
+ * x in [2^30, 2^31] (the chord between two entries is at most half a unit
+ * above the curve). The entry past 2^31 is read only at x = 2^31 itself (a
+ * diagonal, where the residual is 0), with weight 0, but it must exist. */
+static const uint16_t recip_tab[130] = {
+    32768, 32514, 32264, 32018, 31775, 31536, 31301, 31069, 30840, 30615, 30394, 30175, 29959,
+    29747, 29537, 29331, 29127, 28926, 28728, 28533, 28340, 28150, 27962, 27777, 27594, 27414,
+    27236, 27060, 26887, 26715, 26546, 26379, 26214, 26052, 25891, 25732, 25575, 25420, 25267,
+    25116, 24966, 24818, 24672, 24528, 24385, 24245, 24105, 23967, 23831, 23697, 23564, 23432,
+    23302, 23173, 23046, 22920, 22795, 22672, 22550, 22429, 22310, 22192, 22075, 21960, 21845,
+    21732, 21620, 21509, 21400, 21291, 21183, 21077, 20972, 20867, 20764, 20662, 20560, 20460,
+    20361, 20262, 20165, 20068, 19973, 19878, 19784, 19692, 19600, 19508, 19418, 19329, 19240,
+    19152, 19065, 18979, 18893, 18809, 18725, 18641, 18559, 18477, 18396, 18316, 18236, 18157,
+    18079, 18001, 17924, 17848, 17772, 17697, 17623, 17549, 17476, 17404, 17332, 17261, 17190,
+    17120, 17050, 16981, 16913, 16845, 16777, 16710, 16644, 16578, 16513, 16448, 16384, 16320,
+};
+
+#endif
+
+/* floor(m * 2^29 / e) for m * 2^6 <= e <= 2^31 (2^31 only on a diagonal,
+ * with m = 0): the residual ratio, at most
+ * 2^23. Exact on every target (same result): one instruction on a 64-bit
+ * host, two 16-bit digit steps with a 32-bit divider, two table-reciprocal
+ * steps without one. */
+XGO_FIXED_HOT uint32_t residual_q29(uint32_t m, uint32_t e)
+{
+#if XGO_CORE_DIV64_NATIVE
+    return (uint32_t)(((uint64_t)m << 29) / e);
+#elif XGO_CORE_NARROW_CPU
+    /* Two 12-bit digits from the reciprocal rc ~ 2^45 / (e 2^s) of the
+     * table's chord (never above it, less than 3.5 below, >= 2^14):
+     * - the top, qt = floor(m 2^17 / e): the estimate ((m >> 8) rc) >> (20
+     *   - s) is qt or qt - 1, its remainder (in [0, 2e): exact modulo
+     *   2^32) decides;
+     * - the low, floor(r 2^12 / e) for that remainder r < e: the estimate
+     *   (((r 2^s) >> 15) rc) >> 18 (a product below 2^31) falls short of
+     *   r 2^12 / e by less than 0.875 (rc's error times a quotient below
+     *   2^12) + 0.125 (the truncated r, 2^27 / (e 2^s)) = 1, so it is the
+     *   digit or one less, and again the remainder (in [0, 2e)) decides.
+     * It replaced 12 restoring steps (M0: about 70 instructions). Checked
+     * equal to the 64-bit division on 2 * 10^8 random pairs, 7.7 * 10^7
+     * pairs around every table node at the three shifts and 1.5 * 10^9
+     * pairs with e over its whole range (a throwaway harness). */
+    uint32_t big = e, q, r, rc, lo;
+    unsigned s = 0;
+    while (big < 0x40000000u) { /* e >= 2^28: at most twice */
+        big <<= 1;
+        ++s;
+    }
+    {
+        const uint32_t k = (big >> 23) - 128u, f = (big >> 7) & 0xFFFFu;
+        const uint32_t a = recip_tab[k], b = recip_tab[k + 1u];
+        rc = a - (((a - b) * f) >> 16) - 2u; /* <= 2^45 / big, within 3.5 */
+    }
+    q = ((m >> 8) * rc) >> (20u - s); /* m >> 8 < 2^17, rc <= 2^15 */
+    r = (m << 17) - q * e;            /* modulo 2^32; the true value is in [0, 2e) */
+    if (r >= e) {
+        r -= e;
+        ++q;
+    }
+    lo = (((r << s) >> 15) * rc) >> 18; /* r 2^s < 2^31 */
+    if ((r << 12) - lo * e >= e) {      /* the remainder, modulo 2^32 as above */
+        ++lo;
+    }
+    return (q << 12) | lo;
+#else
+    uint32_t rem;
+    return div_shifted(m, e, &rem) >> 3;
+#endif
+}
+
+/* Angle of (ux, uy), ux >= uy > 0, ux in [2^23, 2^25] (callers: at least
+ * 2^23.5): BAM 0..2^29. The
+ * vector is turned back by the nearest table angle atan(i/32) exactly in
+ * integers (multiplied by (32 - i j): x' = 32 x + i y, y' = 32 y - i x),
+ * which leaves a residual e = y'/x' within +-1/64; atan e = e - e^3/3 (the
+ * next term is below 2e-10 rad). */
+XGO_FIXED_HOT uint32_t atan_octant(uint32_t ux, uint32_t uy)
+{
+    const uint32_t i = nearest_node(uy, ux);
+    const int32_t ey = (int32_t)(uy << 5) - (int32_t)(i * ux); /* |ey| <= ux / 2 */
+    const uint32_t ex = (ux << 5) + i * uy;                       /* [2^29, 2^31] */
+    const uint32_t m = ey < 0 ? (uint32_t)-ey : (uint32_t)ey;
+    uint32_t q = residual_q29(m, ex); /* e in Q29, < 2^23 (0 on the axes and diagonals) */
+    uint32_t u, w, c, ah, al, b;
+    /* e^3/3 in Q29 from 15-bit pieces (u = e in Q21) */
+    u = q >> 8;
+    w = (u * u) >> 15;               /* e^2 in Q27 */
+    c = (w * u) >> 19;               /* e^3 in Q29, < 2^11 */
+    q -= ((c + 1u) * 21846u) >> 16;  /* (c + 1) / 3: rounded third */
+    /* radians Q29 -> BAM: q * 4/pi = q + q * (4/pi - 1), the product in
+     * two 16-bit pieces of q */
+    ah = q >> 8;
+    al = q & 0xFFu;
+    b = q + ((ah * FOUR_PI_FRAC_Q16 + (1u << 7)) >> 8) + ((al * FOUR_PI_FRAC_Q16) >> 16);
+    return ey < 0 ? atan_tab[i] - b : atan_tab[i] + b;
+}
+
+/* From the octant's angle a of (big, small) back to the angle of (x, y):
+ * swap said small was the x component. */
+XGO_FIXED_HOT xgo_bam_t fold(uint32_t a, int swap, int xneg, int yneg)
+{
+    if (swap) {
+        a = XGO_BAM_90 - a;
+    }
+    if (xneg) {
+        a = XGO_BAM_180 - a;
+    }
+    return yneg ? 0u - a : a;
+}
+
+#ifndef XGO_FIXED_INLINE /* fixed.c's own */
+/* The angle of (ux, uy) with the signs given apart: the octant (swap so the
+ * smaller is uy), atan_octant with the larger component scaled to [2^24,
+ * 2^25] (exact when scaled up, rounded once when scaled down: 25 bits of
+ * the ratio kept; the larger may round up to 2^25 itself, still in range),
+ * folded back. Axes and diagonals come out exact by themselves (the
+ * residual is 0 there); atan2(0, 0) = 0. */
+static xgo_bam_t atan2_u32(uint32_t ux, uint32_t uy, int xneg, int yneg)
+{
+    const int swap = uy > ux;
+    uint32_t big = swap ? uy : ux, small = swap ? ux : uy;
+    const unsigned n = xgo_clz32(big);
+    if (n >= 7u) {
+        if (big == 0u) {
+            return 0u;
+        }
+        big <<= n - 7u;
+        small <<= n - 7u;
+    } else { /* round(v / 2^k) as (v / 2 + 2^(k-2)) / 2^(k-1) for k >= 2: no overflow */
+        const unsigned k = 7u - n;
+        const uint32_t half = (1u << (k - 1u)) >> 1;
+        big = ((big >> 1) + half + (k == 1u ? (big & 1u) : 0u)) >> (k - 1u);
+        small = ((small >> 1) + half + (k == 1u ? (small & 1u) : 0u)) >> (k - 1u);
+    }
+    return fold(atan_octant(big, small), swap, xneg, yneg);
+}
+#endif
+
+XGO_FIXED_HOT uint32_t abs_u32(int32_t v)
+{
+    return v < 0 ? 0u - (uint32_t)v : (uint32_t)v;
+}
+XGO_ALWAYS_INLINE xgo_bam_t xgo_atan2_len30_inline(int32_t y, int32_t x)
+{
+    const uint32_t ux = abs_u32(x), uy = abs_u32(y);
+    const int swap = uy > ux;
+    /* the larger is in [2^28.5, 2^30]: 2^5 down lands in [2^23.5, 2^25] */
+    return fold(atan_octant((swap ? uy : ux) >> 5, (swap ? ux : uy) >> 5), swap, x < 0, y < 0);
+}
+
+XGO_FIXED_HOT uint64_t abs_u64(int64_t v)
+{
+    return v < 0 ? 0u - (uint64_t)v : (uint64_t)v;
+}
+
+XGO_ALWAYS_INLINE xgo_bam_t xgo_atan2_64_inline(int64_t y, int64_t x)
+{
+    /* the signs kept apart and the pair ordered in place (fewer live
+     * 64-bit values: the M0 spilled them) */
+    const int xneg = x < 0, yneg = y < 0;
+    uint64_t big = abs_u64(x), small = abs_u64(y); /* <= 2^63 */
+    int swap = 0;
+    uint32_t hi;
+    unsigned k;
+    if (small > big) {
+        const uint64_t t = big;
+        big = small;
+        small = t;
+        swap = 1;
+    }
+    hi = (uint32_t)(big >> 32); /* the larger has the bit length of both */
+    if (hi == 0u) {
+#ifdef XGO_FIXED_INLINE /* rare there: the out-of-line function's registers and code */
+        return xgo_atan2_64(y, x);
+#else
+        return swap ? atan2_u32((uint32_t)small, (uint32_t)big, xneg, yneg)
+                    : atan2_u32((uint32_t)big, (uint32_t)small, xneg, yneg);
+#endif
+    }
+    /* round(v / 2^k) to 25 bits (the larger may round up to 2^25): k is
+     * the bit length, 64 - clz(hi), less 25 */
+    k = 39u - xgo_clz32_nz(hi);
+#if XGO_CORE_DIV64_NATIVE
+    return fold(atan_octant(xgo_round_shr64(big, k), xgo_round_shr64(small, k)), swap, xneg, yneg);
+#else
+    {
+        /* On a 32-bit core the top words, shifted left by clz(hi) = 39 - k
+         * so the larger's is in [2^31, 2^32): each is floor(v / 2^(k - 7)),
+         * whose bits 7 up are floor(v / 2^k) and bit 6 is v's bit k - 1,
+         * the rounding's. Two 32-bit shifts a value instead of a 64-bit
+         * shift by a variable k either side of 32 (xgo_round_shr64). */
+        const unsigned n = 39u - k;
+        uint32_t bt = hi, st = (uint32_t)(small >> 32);
+        if (n != 0u) {
+            bt = (bt << n) | ((uint32_t)big >> (32u - n));
+            st = (st << n) | ((uint32_t)small >> (32u - n));
+        }
+        return fold(atan_octant((bt >> 7) + ((bt >> 6) & 1u), (st >> 7) + ((st >> 6) & 1u)), swap, xneg, yneg);
+    }
+#endif
+}
+
+#endif /* XGO_FIXED_BODIES */

@@ -20,6 +20,16 @@
 #include "compiler.h"
 #include "wide.h" /* 32 x 32 -> 64 products without a libgcc call on a Cortex-M0 */
 
+/* On a 64-bit host the leg IK inlines its square roots and arctangents
+ * (fixed.h's bodies: the same code as the out-of-line functions, so the
+ * same values); elsewhere it calls them (flash, and the static stack
+ * bound: docs/mcu.md). */
+#if XGO_CORE_DIV64_NATIVE
+#define XGO_FIXED_BODIES
+#define XGO_FIXED_INLINE
+#include "fixed.h"
+#endif
+
 #define Q4_SHIFT 4             /* planar lengths in 1/16 um */
 #define Q4_ONE 16              /* 2^Q4_SHIFT: scale by multiplying (<< of a negative value is undefined) */
 #define FAR_LIMIT_UM (1 << 20) /* targets beyond ~1 m are scaled down */
@@ -99,6 +109,34 @@ static xgo_bam_t clamp_arc(xgo_bam_t a, xgo_bam_t lo, uint32_t width)
     return a;
 }
 
+/* The leg IK's square root and arctangents: inline on a 64-bit host. */
+XGO_ALWAYS_INLINE uint32_t ik_sqrt64_near(uint64_t x)
+{
+#if XGO_CORE_DIV64_NATIVE
+    return xgo_sqrt64_near_inline(x);
+#else
+    return xgo_sqrt64_near(x);
+#endif
+}
+
+XGO_ALWAYS_INLINE xgo_bam_t ik_atan2_len30(int32_t y, int32_t x)
+{
+#if XGO_CORE_DIV64_NATIVE
+    return xgo_atan2_len30_inline(y, x);
+#else
+    return xgo_atan2_len30(y, x);
+#endif
+}
+
+XGO_ALWAYS_INLINE xgo_bam_t ik_atan2_64(int64_t y, int64_t x)
+{
+#if XGO_CORE_DIV64_NATIVE
+    return xgo_atan2_64_inline(y, x);
+#else
+    return xgo_atan2_64(y, x);
+#endif
+}
+
 /* round(sqrt(v)) for v < 2^62 (every caller: at most 2^60): the floor of
  * sqrt(4v) = 2 sqrt(v), halved with the carry. */
 static uint32_t isqrt64_round(uint64_t v)
@@ -107,9 +145,9 @@ static uint32_t isqrt64_round(uint64_t v)
 }
 
 /* The same within a unit (xgo_sqrt64_near): the hot path's two roots. */
-static uint32_t sqrt64_round_near(uint64_t v)
+HOST_INLINE uint32_t sqrt64_round_near(uint64_t v)
 {
-    return (xgo_sqrt64_near(v << 2) + 1u) >> 1;
+    return (ik_sqrt64_near(v << 2) + 1u) >> 1;
 }
 
 /* (a + ib)(c + id), every factor and a + b, c + d, d - c within int32 and
@@ -323,7 +361,7 @@ HOST_INLINE int planar_ik(planar_t *pl, int32_t x, int32_t h, leg_solution_t *s)
     nn = xgo_shr64_to32(n, pl->d_shift);
     nn = nn > dn ? dn : (nn < -dn ? -dn : nn);
     cn = sqrt64_round_near(xgo_umul_wide((uint32_t)(dn - nn), (uint32_t)(dn + nn))); /* < 2^30 */
-    s->g = xgo_atan2_len30(nn, (int32_t)cn); /* |(nn, cn)| = dn in [2^29, 2^30) */
+    s->g = ik_atan2_len30(nn, (int32_t)cn); /* |(nn, cn)| = dn in [2^29, 2^30) */
     /* t2 = u-angle of the foot (x, h) minus the foot's angle past the thigh,
      * the u-angle of (a, b) = (L2 cos g, L1 + L2 sin g) (scaled by dn). As
      * complex numbers h - ix and b - ia, the difference of their angles is
@@ -336,7 +374,7 @@ HOST_INLINE int planar_ik(planar_t *pl, int32_t x, int32_t h, leg_solution_t *s)
         const int32_t a30 = xgo_shr64_to32(a, cut), b30 = xgo_shr64_to32(b, cut);
         int64_t im, re;
         complex_mul(h, -x, b30, a30, &re, &im); /* |terms| < 2^57 */
-        s->t2 = xgo_atan2_64(im, re);
+        s->t2 = ik_atan2_64(im, re);
     }
     if (!joint_in(pl, XGO_JOINT_KNEE, s->g - pl->knee_off, &s->q[XGO_JOINT_KNEE]) ||
         !joint_in(pl, XGO_JOINT_HIP, s->t2, &s->q[XGO_JOINT_HIP])) {
@@ -418,12 +456,12 @@ static void fk_bam(const xgo_profile_t *p, int side_y, xgo_bam_t phi, xgo_bam_t 
  * (wp, z) is the plane point (d, h) turned by phi,
  *   wp = d cos phi + h sin phi,  z = -d sin phi + h cos phi,
  * so cos phi ~ d wp + h z and sin phi ~ h wp - d z (all in q4). */
-static xgo_bam_t branch_phi(const planar_t *pl, int32_t wp, int32_t z, int32_t h)
+HOST_INLINE xgo_bam_t branch_phi(const planar_t *pl, int32_t wp, int32_t z, int32_t h)
 {
     const int32_t d4 = pl->p->abad_offset_um * Q4_ONE, wp4 = wp * Q4_ONE, z4 = z * Q4_ONE;
     int64_t re, im;
     complex_mul(wp4, z4, d4, -h, &re, &im); /* (wp + iz)(d - ih): |terms| < 2^52 */
-    return xgo_atan2_64(-im, re);
+    return ik_atan2_64(-im, re);
 }
 
 /* One branch of the abduction solution: the foot at h = branch * |h| in the
