@@ -855,7 +855,8 @@ static void random_walk_command(xgo_gait_command_t *c)
 }
 
 /* The gait's caches (the speed limit's, the fitted cadence's with its swing
- * time, the touchdown points kept as landing points, land_is_td) are pure:
+ * time, the touchdown points kept as landing points, land_is_td, and on a
+ * 64-bit host the swing feet's end tangents, tangents_kept) are pure:
  * a gait that forgets them before every tick publishes the same feet,
  * contacts and velocity, bit for bit, under random commands (ramps, stops,
  * gait switches, mark time). */
@@ -875,6 +876,9 @@ static void test_caches_change_no_result(void)
             /* what xgo_gait_init leaves in the cache keys: no key matches */
             fresh.cache_cmd_type = fresh.cache_v_type = 0xFFu;
             fresh.land_is_td = 0;
+#if XGO_GAIT_KEEPS_TANGENTS
+            fresh.tangents_kept = 0;
+#endif
             xgo_gait_tick(&g, &c);
             xgo_gait_tick(&fresh, &c);
             for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {

@@ -94,6 +94,17 @@ typedef struct xgo_regs_s {
     xgo_regs_stats_t stats;
 } xgo_regs_t;
 
+/* XGO_GAIT_KEEPS_TANGENTS: 1 on a 64-bit host, whose RAM no budget limits:
+ * the gait keeps its swing feet's end tangents across ticks there (the
+ * fields below; src/core/gait.c, swing_step). The MCUs have no room for
+ * them (docs/mcu.md, Budgets: device object + stack). Set by the target
+ * alone, so every file of one build sees the same xgo_gait_t. */
+#if defined(__SIZEOF_POINTER__) && __SIZEOF_POINTER__ == 8
+#define XGO_GAIT_KEEPS_TANGENTS 1
+#else
+#define XGO_GAIT_KEEPS_TANGENTS 0
+#endif
+
 /* The gait generator (src/core/gait.h). */
 typedef struct xgo_gait_s {
     /* ---- outputs, valid after xgo_gait_init and after every tick ---- */
@@ -135,6 +146,14 @@ typedef struct xgo_gait_s {
     uint8_t cache_cmd_type;
     uint8_t cache_v_type;
     uint16_t cache_swing_q16;  /* the swing time at cache_rate_fit (in what was padding) */
+#if XGO_GAIT_KEEPS_TANGENTS
+    int32_t tangent_q8[XGO_LEG_COUNT][4]; /* a swing foot's end tangents m0 x, y and
+                                             m1 x, y (1/256 um per swing) */
+    uint8_t tangents_kept; /* bit leg: tangent_q8 holds them for its lift-off
+                              point, its landing point while that is the
+                              touchdown point (land_is_td), the cached velocity
+                              and cache_swing_q16 */
+#endif
 
     /* ---- diagnostics ---- */
     uint32_t ticks;           /* ticks since init */

@@ -199,6 +199,33 @@ static int at_stance(const xgo_gait_t *g, int leg)
 
 /* ------------------------------------------------------------ API */
 
+/* GAIT_KEEP_TANGENTS: a 64-bit host keeps the swing feet's end tangents
+ * across ticks (xgo_gait_t's fields, board_state.h; swing_tangents); on
+ * the 32-bit cores the RAM is budgeted, and the narrow build (tests)
+ * computes as they do. */
+#define GAIT_KEEP_TANGENTS (XGO_GAIT_KEEPS_TANGENTS && !XGO_CORE_NARROW_CPU)
+
+/* The kept tangents no longer hold: all of them (the velocity, the cadence
+ * or the swing time changed), or one leg's (a lift-off point moved). */
+static void forget_tangents(xgo_gait_t *g)
+{
+#if GAIT_KEEP_TANGENTS
+    g->tangents_kept = 0;
+#else
+    (void)g;
+#endif
+}
+
+static void forget_leg_tangents(xgo_gait_t *g, int leg)
+{
+#if GAIT_KEEP_TANGENTS
+    g->tangents_kept = (uint8_t)(g->tangents_kept & ~(1u << leg));
+#else
+    (void)g;
+    (void)leg;
+#endif
+}
+
 static void invalidate_caches(xgo_gait_t *g)
 {
     g->cache_cmd[0] = g->cache_cmd[1] = g->cache_cmd[2] = INT32_MIN;
@@ -208,6 +235,7 @@ static void invalidate_caches(xgo_gait_t *g)
     g->cache_rate_base = 0;
     g->cache_rate_fit = 0;
     g->land_is_td = 0;
+    forget_tangents(g);
 }
 
 void xgo_gait_init(xgo_gait_t *g, const xgo_vec3_t stance_um[XGO_LEG_COUNT])
@@ -508,8 +536,10 @@ static uint32_t fit_cadence(xgo_gait_t *g, const gait_tick_t *x)
          * the rate: no library division in a steady tick on an M0. */
         XGO_ASSERT(x->t->k_swing / (rate_fit >> 8) < 65536u);
         g->cache_swing_q16 = (uint16_t)(x->t->k_swing / (rate_fit >> 8));
-        /* the touchdown points move with the velocity and the cadence */
+        /* the touchdown points move with the velocity and the cadence, the
+         * swing's end tangents with them and the swing time */
         g->land_is_td = 0;
+        forget_tangents(g);
     }
     return g->cache_rate_fit;
 }
@@ -684,6 +714,7 @@ static int lift_foot(xgo_gait_t *g, const gait_tick_t *x, int leg)
             return 0;
         }
         g->swinging[leg] = 1;
+        forget_leg_tangents(g, leg); /* they start here */
         g->lift_q8[leg][0] = g->pos_q8[leg][0];
         g->lift_q8[leg][1] = g->pos_q8[leg][1];
         /* still down for the part of the tick before the lift-off */
@@ -800,21 +831,72 @@ static void swing_weights(const gait_table_t *t, uint32_t theta, gait_swing_weig
     wt->follow = land_follow(u);
 }
 
+/* A swing's end tangent on one axis, in 1/256 um per unit of psi: -f
+ * T_swing for the ground velocity f at that end (T_swing < 2^16,
+ * swing_time). */
+XGO_ALWAYS_INLINE int32_t swing_tangent(const gait_tick_t *x, int32_t f)
+{
+    return -mul_q_u16(f, x->swing_q16, 8u);
+}
+
 /* One coordinate of a swing foot on the curve (swing_step), landing at
- * td, with the ground velocities f0 at the lift-off point and f1 at the
- * landing point. */
-XGO_INLINE_FAST void swing_axis(xgo_gait_t *g, const gait_tick_t *x, int leg, int c, int32_t td, int32_t f0,
-                                int32_t f1)
+ * td, with the end tangents m0 (lift-off) and m1 (landing). */
+XGO_ALWAYS_INLINE void swing_coord(xgo_gait_t *g, const gait_tick_t *x, int leg, int c, int32_t td, int32_t m0,
+                                   int32_t m1)
 {
     const gait_swing_weights_t *wt = &x->weights;
     const int32_t lift = g->lift_q8[leg][c];
-    /* end tangents in 1/256 um per unit of psi: -f * T_swing (T_swing <
-     * 2^16, swing_time) */
-    const int32_t m0 = -mul_q_u16(f0, x->swing_q16, 8u);
-    const int32_t m1 = -mul_q_u16(f1, x->swing_q16, 8u);
     g->pos_q8[leg][c] = lift + mul_q26_weight(wt->h, td - lift) + mul_q26_weight(wt->ca, m0) +
                         mul_q26_weight(wt->cb, m1);
 }
+
+#if GAIT_KEEP_TANGENTS
+/* A swing foot's end tangents (m0 x, y, m1 x, y), landing at td: from its
+ * ground velocities at the lift-off point and at the landing point. They
+ * only change with those points, the velocity and the swing time, so they
+ * are kept (tangents_kept) once the landing point is the cached velocity's
+ * touchdown point (land_is_td) at the cached swing time: land_is_td's bits
+ * are cleared only with the kept tangents (fit_cadence), a landing point
+ * moves only while its bit is clear (land_point), a lift-off point only at
+ * a lift-off (forget_leg_tangents). In a steady walk a swing computes them
+ * once, not each tick (two foot velocities and four tangent products fewer
+ * a foot and tick). */
+static void swing_tangents(xgo_gait_t *g, const gait_tick_t *x, int leg, const int32_t td[2], int32_t m[4])
+{
+    const unsigned bit = 1u << leg;
+    /* the swing time at the cached rate: the one they were kept for */
+    const int keep = x->swing_q16 == g->cache_swing_q16;
+    int32_t f0[2], f1[2];
+    int i;
+    if (keep && (g->tangents_kept & bit) != 0u) {
+        for (i = 0; i < 4; ++i) {
+            m[i] = g->tangent_q8[leg][i];
+        }
+        return;
+    }
+    gait_tick_foot_velocity(x, g->lift_q8[leg][0] >> 8, g->lift_q8[leg][1] >> 8, f0);
+    gait_tick_foot_velocity(x, td[0] >> 8, td[1] >> 8, f1);
+    m[0] = swing_tangent(x, f0[0]);
+    m[1] = swing_tangent(x, f0[1]);
+    m[2] = swing_tangent(x, f1[0]);
+    m[3] = swing_tangent(x, f1[1]);
+    if (keep && ((g->land_is_td >> leg) & 1u) != 0u) {
+        /* the landing point is the cached velocity's touchdown point */
+        for (i = 0; i < 4; ++i) {
+            g->tangent_q8[leg][i] = m[i];
+        }
+        g->tangents_kept = (uint8_t)(g->tangents_kept | bit);
+    }
+}
+#else
+/* One coordinate of a swing foot (swing_coord) from the ground velocities
+ * f0 at the lift-off point and f1 at the landing point. */
+XGO_INLINE_FAST void swing_axis(xgo_gait_t *g, const gait_tick_t *x, int leg, int c, int32_t td, int32_t f0,
+                                int32_t f1)
+{
+    swing_coord(g, x, leg, c, td, swing_tangent(x, f0), swing_tangent(x, f1));
+}
+#endif
 
 /* One swing foot's step on that curve. The weights depend on the phase
  * since lift-off alone, so a leg lifting with one already moved this tick
@@ -824,7 +906,11 @@ static void swing_step(xgo_gait_t *g, gait_tick_t *x, int leg)
 {
     const uint32_t theta = g->phase - x->t->lift[leg];
     const gait_swing_weights_t *wt = &x->weights;
+#if GAIT_KEEP_TANGENTS
+    int32_t td[2], m[4];
+#else
     int32_t td[2], f0[2], f1[2];
+#endif
     if (!x->have_weights || wt->theta != theta) {
         swing_weights(x->t, theta, &x->weights);
         x->have_weights = 1;
@@ -839,10 +925,16 @@ static void swing_step(xgo_gait_t *g, gait_tick_t *x, int leg)
         touchdown_q8(g, x, leg, td);
         land_point(g, leg, wt->follow, td);
     }
+#if GAIT_KEEP_TANGENTS
+    swing_tangents(g, x, leg, td, m);
+    swing_coord(g, x, leg, 0, td[0], m[0], m[2]);
+    swing_coord(g, x, leg, 1, td[1], m[1], m[3]);
+#else
     gait_tick_foot_velocity(x, g->lift_q8[leg][0] >> 8, g->lift_q8[leg][1] >> 8, f0);
     gait_tick_foot_velocity(x, td[0] >> 8, td[1] >> 8, f1);
     swing_axis(g, x, leg, 0, td[0], f0[0], f1[0]);
     swing_axis(g, x, leg, 1, td[1], f0[1], f1[1]);
+#endif
     /* the height is at most XGO_GAIT_MAX_HEIGHT_UM < 2^16 (lift_foot) */
     g->foot_um[leg].z = mul_q_u16(wt->s2, (uint32_t)g->swing_height_um[leg], 30u);
 }
