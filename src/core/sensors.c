@@ -132,9 +132,20 @@ void xgo_imu_reset_yaw(xgo_imu_t *imu)
 XGO_ALWAYS_INLINE int32_t wrap_sum(int32_t a, int32_t b)
 {
 #if XGO_CORE_DIV64_NATIVE
+    /* A sum within a turn of the range (the integrated yaw, at most one
+     * turn, plus a body's yaw: a robot that turned half a turn or more,
+     * about half the ticks of one that keeps turning) is one turn away:
+     * wrapped here, without the calls (x86-64: their saved registers and
+     * about 20 instructions). */
     const int64_t s = (int64_t)a + b;
     if (s >= -180000 && s < 180000) {
         return (int32_t)s;
+    }
+    if (s >= 180000 && s < 540000) {
+        return (int32_t)s - 360000;
+    }
+    if (s >= -540000 && s < -180000) {
+        return (int32_t)s + 360000;
     }
     return xgo_wrap_mdeg(xgo_sat32(s));
 #else
