@@ -301,6 +301,45 @@ static uint32_t lcg_next(uint32_t *s)
     return *s;
 }
 
+/* The board's tick (xgo_inertial_tick_body: one function, inline on a
+ * 64-bit host) is xgo_inertial_body_position, then xgo_inertial_tick_sc:
+ * the same state after every tick of random walks, with and without a
+ * body yaw. */
+static void test_tick_body_is_position_then_tick(void)
+{
+    uint32_t seed = 5u;
+    xgo_inertial_t a, b;
+    xgo_odometry_t o;
+    xgo_body_pose_t pose;
+    unsigned k;
+    xgo_inertial_init(&a);
+    xgo_inertial_init(&b);
+    xgo_odometry_init(&o);
+    memset(&pose, 0, sizeof pose);
+    for (k = 0; k < 100000; ++k) {
+        int64_t body[3];
+        xgo_q30_t sc[2];
+        int32_t att[3];
+        o.yaw += lcg_next(&seed) >> 10;
+        xgo_sincos(o.yaw, &o.yaw_sc[0], &o.yaw_sc[1]);
+        o.x_q8 += (int32_t)lcg_next(&seed) >> 12;
+        o.y_q8 -= (int32_t)lcg_next(&seed) >> 12;
+        pose.x_um = (int32_t)lcg_next(&seed) >> (k % 24u + 8u);
+        pose.y_um = (int32_t)lcg_next(&seed) >> (k % 24u + 8u);
+        pose.z_um = 90000 + (int32_t)(lcg_next(&seed) % 20000u);
+        pose.yaw_mdeg = (k / 1000u) % 2u ? (int32_t)(lcg_next(&seed) % 40001u) - 20000 : 0;
+        att[0] = (int32_t)(lcg_next(&seed) % 360000u) - 180000;
+        att[1] = (int32_t)(lcg_next(&seed) % 360000u) - 180000;
+        att[2] = (int32_t)(lcg_next(&seed) % 360000u) - 180000;
+        xgo_inertial_tick_body(&a, &o, &pose, att);
+        xgo_inertial_body_position(&o, &pose, body, sc);
+        xgo_inertial_tick_sc(&b, body, sc, att);
+        if (memcmp(&a, &b, sizeof a) != 0) {
+            TEST_FAIL_MESSAGE("xgo_inertial_tick_body differs from position + tick_sc");
+        }
+    }
+}
+
 /* The body's position in the world: the odometry's point plus the body
  * shift turned by the heading, * 256 / 2^30 rounded - against 64-bit
  * products computed here, for shifts inside the M0's 32-bit form (the
@@ -573,6 +612,7 @@ int main(void)
     RUN_TEST(test_a_push_shows_in_the_gyro);
 #if XGO_WITH_INERTIAL
     RUN_TEST(test_body_position_is_the_rounded_turn);
+    RUN_TEST(test_tick_body_is_position_then_tick);
     RUN_TEST(test_rotation_without_yaw_holds_the_sines);
     RUN_TEST(test_large_products_are_the_rounded_wide_product);
     RUN_TEST(test_tick_equals_the_wide_product_model);

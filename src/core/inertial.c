@@ -156,6 +156,15 @@ void xgo_inertial_init(xgo_inertial_t *s)
     xgo_sincos(xgo_mdeg_to_bam(0), &s->trig_q30[1][0], &s->trig_q30[1][1]);
 }
 
+/* Inline on a 64-bit host, where a call costs its saved registers and
+ * argument moves (xgo_inertial_tick_body: one frame for the whole model,
+ * the body's position in registers); out of line on an MCU. */
+#if XGO_CORE_DIV64_NATIVE
+#define HOST_INLINE XGO_ALWAYS_INLINE
+#else
+#define HOST_INLINE static
+#endif
+
 /* sin and cos of the roll and pitch, shared by the accelerometer and the
  * gyroscope (two sincos instead of four). */
 typedef struct attitude_trig_s {
@@ -165,7 +174,7 @@ typedef struct attitude_trig_s {
 /* Each worked out again only when its angle changed: a body held at a
  * roll or a pitch (standing, walking without a periodic motion on that
  * axis) spares its sincos. */
-static void attitude_trig(xgo_inertial_t *s, const int32_t att_mdeg[3], attitude_trig_t *t)
+HOST_INLINE void attitude_trig(xgo_inertial_t *s, const int32_t att_mdeg[3], attitude_trig_t *t)
 {
     unsigned axis;
     for (axis = 0; axis < 2; axis++) {
@@ -182,8 +191,8 @@ static void attitude_trig(xgo_inertial_t *s, const int32_t att_mdeg[3], attitude
 
 /* Specific force in the body frame, LSB * 256: the world acceleration
  * (a_q8, LSB * 256, world axes) plus 1 g up, turned by R^T. */
-static void specific_force(const int32_t a_q8[3], const xgo_q30_t heading_sc[2],
-                           const attitude_trig_t *t, int32_t f[3])
+HOST_INLINE void specific_force(const int32_t a_q8[3], const xgo_q30_t heading_sc[2],
+                                const attitude_trig_t *t, int32_t f[3])
 {
     const xgo_q30_t sh = heading_sc[0], ch = heading_sc[1];
     int32_t hx, hy, hz, x1, z1, gx, gz;
@@ -210,7 +219,7 @@ static void specific_force(const int32_t a_q8[3], const xgo_q30_t heading_sc[2],
 }
 
 /* Body rates from the Euler rates (mdeg per tick), LSB * 256. */
-static void body_rates(const int32_t d_mdeg[3], const attitude_trig_t *t, int32_t w[3])
+HOST_INLINE void body_rates(const int32_t d_mdeg[3], const attitude_trig_t *t, int32_t w[3])
 {
     const int32_t yaw_cp = mul_q30_rate(d_mdeg[2], t->cp);
     w[0] = d_mdeg[0] - mul_q30_rate(d_mdeg[2], t->sp);
@@ -226,8 +235,8 @@ void xgo_inertial_tick(xgo_inertial_t *s, const int64_t body_q8[3], xgo_bam_t he
     xgo_inertial_tick_sc(s, body_q8, sc, att_mdeg);
 }
 
-void xgo_inertial_tick_sc(xgo_inertial_t *s, const int64_t body_q8[3], const xgo_q30_t heading_sc[2],
-                          const int32_t att_mdeg[3])
+HOST_INLINE void tick_sc(xgo_inertial_t *s, const int64_t body_q8[3], const xgo_q30_t heading_sc[2],
+                         const int32_t att_mdeg[3])
 {
     int32_t a_q8[3], f[3], d[3], w[3];
     attitude_trig_t trig;
@@ -263,6 +272,12 @@ void xgo_inertial_tick_sc(xgo_inertial_t *s, const int64_t body_q8[3], const xgo
     filter(s->gyro_q8, w, s->gyro);
 }
 
+void xgo_inertial_tick_sc(xgo_inertial_t *s, const int64_t body_q8[3], const xgo_q30_t heading_sc[2],
+                          const int32_t att_mdeg[3])
+{
+    tick_sc(s, body_q8, heading_sc, att_mdeg);
+}
+
 /* floor((a x - b y + 2^21) / 2^22) for Q30 a, b: one coordinate of a
  * rotated point, * 256 / 2^30 rounded. On a Cortex-M0, for |x|, |y| < 2^19
  * (a body shift: always), from the 10-bit pieces of a and b, a = a2 2^20 +
@@ -283,8 +298,8 @@ static int64_t turn_q22(xgo_q30_t a, int32_t x, xgo_q30_t b, int32_t y)
     return (xgo_mul_wide(a, x) - xgo_mul_wide(b, y) + (1 << 21)) >> 22;
 }
 
-void xgo_inertial_body_position(const xgo_odometry_t *o, const xgo_body_pose_t *pose,
-                                int64_t body_q8[3], xgo_q30_t heading_sc[2])
+XGO_ALWAYS_INLINE void body_position(const xgo_odometry_t *o, const xgo_body_pose_t *pose,
+                                     int64_t body_q8[3], xgo_q30_t heading_sc[2])
 {
     const xgo_q30_t sh = o->yaw_sc[0], ch = o->yaw_sc[1];
     /* (c x - s y) * 256 / 2^30, (s x + c y) * 256 / 2^30 */
@@ -297,5 +312,20 @@ void xgo_inertial_body_position(const xgo_odometry_t *o, const xgo_body_pose_t *
     } else {
         xgo_sincos(o->yaw + xgo_mdeg_to_bam(pose->yaw_mdeg), &heading_sc[0], &heading_sc[1]);
     }
+}
+
+void xgo_inertial_body_position(const xgo_odometry_t *o, const xgo_body_pose_t *pose,
+                                int64_t body_q8[3], xgo_q30_t heading_sc[2])
+{
+    body_position(o, pose, body_q8, heading_sc);
+}
+
+void xgo_inertial_tick_body(xgo_inertial_t *s, const xgo_odometry_t *o, const xgo_body_pose_t *pose,
+                            const int32_t att_mdeg[3])
+{
+    int64_t body_q8[3];
+    xgo_q30_t heading_sc[2];
+    body_position(o, pose, body_q8, heading_sc);
+    tick_sc(s, body_q8, heading_sc, att_mdeg);
 }
 #endif /* XGO_WITH_INERTIAL */

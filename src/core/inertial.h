@@ -69,6 +69,11 @@ void xgo_inertial_tick_sc(xgo_inertial_t *s, const int64_t body_q8[3], const xgo
 void xgo_inertial_body_position(const xgo_odometry_t *o, const xgo_body_pose_t *pose,
                                 int64_t body_q8[3], xgo_q30_t heading_sc[2]);
 
+/* One tick of the board's model: xgo_inertial_body_position, then
+ * xgo_inertial_tick_sc with what it gave. */
+void xgo_inertial_tick_body(xgo_inertial_t *s, const xgo_odometry_t *o, const xgo_body_pose_t *pose,
+                            const int32_t att_mdeg[3]);
+
 /* (a c + 2^29) >> 30 for a Q30 factor c: the model's product for its
  * large factors (exposed for test_inertial). */
 int32_t xgo_inertial_mul_q30(int32_t a, xgo_q30_t c);
@@ -104,6 +109,12 @@ static inline void xgo_inertial_tick_sc(xgo_inertial_t *s, const int64_t body_q8
                                         const xgo_q30_t heading_sc[2], const int32_t att_mdeg[3])
 {
     (void)s, (void)body_q8, (void)heading_sc, (void)att_mdeg;
+}
+
+static inline void xgo_inertial_tick_body(xgo_inertial_t *s, const xgo_odometry_t *o,
+                                          const xgo_body_pose_t *pose, const int32_t att_mdeg[3])
+{
+    (void)s, (void)o, (void)pose, (void)att_mdeg;
 }
 
 static inline void xgo_inertial_body_position(const xgo_odometry_t *o,

@@ -722,8 +722,6 @@ void xgo_motion_publish(const xgo_motion_t *m, xgo_regs_t *r)
 static XGO_OWN_FRAME void inertial_tick(xgo_motion_t *m)
 {
     const int32_t att[3] = {m->imu.roll_mdeg, m->imu.pitch_mdeg, m->imu.yaw_mdeg};
-    int64_t body_q8[3];
-    xgo_q30_t heading_sc[2];
 #if XGO_WITH_INERTIAL
     /* Without a body yaw the IK's rotation holds the roll's and the pitch's
      * sin and cos as they are: R = Ry(pitch) Rx(roll) has cos p, -sin p at
@@ -740,8 +738,7 @@ static XGO_OWN_FRAME void inertial_tick(xgo_motion_t *m)
                                 rot[XGO_ROT(0, 0)]);
     }
 #endif
-    xgo_inertial_body_position(&m->odom, &m->pose, body_q8, heading_sc);
-    xgo_inertial_tick_sc(&m->inertial, body_q8, heading_sc, att);
+    xgo_inertial_tick_body(&m->inertial, &m->odom, &m->pose, att);
 }
 
 /* Entering a mode from another: leg and servo modes start from home, and
