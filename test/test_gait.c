@@ -854,12 +854,30 @@ static void random_walk_command(xgo_gait_command_t *c)
     c->mark_time_um = rnd() % 6 == 0 ? rnd_range(10000, 35000) : 0;
 }
 
+/* One field of the command changed, the others kept: a velocity
+ * component, mark time, the step height, the gait or the pace (out of
+ * range now and then). */
+static void one_field_changed(xgo_gait_command_t *c)
+{
+    switch (rnd() % 7) {
+    case 0: c->vx_um_s = rnd_speed(250000); break;
+    case 1: c->vy_um_s = rnd_speed(180000); break;
+    case 2: c->vyaw_mdeg_s = rnd_speed(100000); break;
+    case 3: c->mark_time_um = c->mark_time_um > 0 ? 0 : rnd_range(10000, 35000); break;
+    case 4: c->step_height_um = rnd() % 2 == 0 ? 0 : rnd_range(5000, 35000); break;
+    case 5: c->type = (uint8_t)(rnd() % 5); break;
+    default: c->pace = (uint8_t)(rnd() % 4); break;
+    }
+}
+
 /* The gait's caches (the speed limit's, the fitted cadence's with its swing
  * time, the touchdown points kept as landing points, land_is_td, and on a
- * 64-bit host the swing feet's end tangents, tangents_kept) are pure:
- * a gait that forgets them before every tick publishes the same feet,
- * contacts and velocity, bit for bit, under random commands (ramps, stops,
- * gait switches, mark time). */
+ * 64-bit host the swing feet's end tangents, tangents_kept, and a steady
+ * tick's front stages, front_kept) are pure: a gait that forgets them
+ * before every tick publishes the same feet, contacts, velocity, rate and
+ * counters, and keeps the same state behind them, bit for bit, under random
+ * commands (ramps, stops, gait switches, mark time, limited speeds, one
+ * field changed at a time). */
 static void test_caches_change_no_result(void)
 {
     xgo_gait_t fresh;
@@ -868,16 +886,30 @@ static void test_caches_change_no_result(void)
     rng_state = 4242u;
     xgo_gait_init(&g, k_stance);
     xgo_gait_init(&fresh, k_stance);
-    while (t < 60000) {
+    while (t < 100000) {
         int hold = rnd_range(1, 300);
         int i, leg;
-        random_walk_command(&c);
+        const uint32_t kind = rnd() % 8;
+        if (kind == 0) { /* stop, often until standing */
+            c.vx_um_s = c.vy_um_s = c.vyaw_mdeg_s = c.mark_time_um = 0;
+            hold *= 5;
+        } else if (kind < 4) {
+            random_walk_command(&c);
+            if (rnd() % 4 == 0) { /* beyond the vendor box: limited speeds too */
+                c.vx_um_s *= 2;
+                c.vy_um_s *= 2;
+                c.vyaw_mdeg_s *= 2;
+            }
+        } else {
+            one_field_changed(&c); /* as a register write does */
+        }
         for (i = 0; i < hold; ++i, ++t) {
             /* what xgo_gait_init leaves in the cache keys: no key matches */
             fresh.cache_cmd_type = fresh.cache_v_type = 0xFFu;
             fresh.land_is_td = 0;
-#if XGO_GAIT_KEEPS_TANGENTS
+#if XGO_GAIT_HOST_CACHES
             fresh.tangents_kept = 0;
+            fresh.front_kept = 0;
 #endif
             xgo_gait_tick(&g, &c);
             xgo_gait_tick(&fresh, &c);
@@ -890,6 +922,23 @@ static void test_caches_change_no_result(void)
             TEST_ASSERT_EQUAL_INT32(fresh.vx_um_s, g.vx_um_s);
             TEST_ASSERT_EQUAL_INT32(fresh.vy_um_s, g.vy_um_s);
             TEST_ASSERT_EQUAL_INT32(fresh.vyaw_mdeg_s, g.vyaw_mdeg_s);
+            TEST_ASSERT_EQUAL_UINT32(fresh.rate, g.rate);
+            TEST_ASSERT_EQUAL_UINT8(fresh.standing, g.standing);
+            TEST_ASSERT_EQUAL_UINT32(fresh.limited_ticks, g.limited_ticks);
+            TEST_ASSERT_EQUAL_UINT32(fresh.boosted_ticks, g.boosted_ticks);
+            TEST_ASSERT_EQUAL_UINT32(fresh.governed_ticks, g.governed_ticks);
+            TEST_ASSERT_EQUAL_UINT32(fresh.outside_ticks, g.outside_ticks);
+            TEST_ASSERT_EQUAL_UINT32(fresh.clamped_ticks, g.clamped_ticks);
+            TEST_ASSERT_EQUAL_UINT32(fresh.switches, g.switches);
+            /* and the state behind them */
+            TEST_ASSERT_EQUAL_UINT32(fresh.phase, g.phase);
+            TEST_ASSERT_EQUAL_UINT32(fresh.rate_base, g.rate_base);
+            TEST_ASSERT_EQUAL_UINT8(fresh.type, g.type);
+            TEST_ASSERT_EQUAL_UINT8(fresh.brake, g.brake);
+            TEST_ASSERT_EQUAL_INT32_ARRAY(fresh.v_ramp, g.v_ramp, 3);
+            TEST_ASSERT_EQUAL_INT32_ARRAY(&fresh.pos_q8[0][0], &g.pos_q8[0][0], 2 * XGO_LEG_COUNT);
+            TEST_ASSERT_EQUAL_INT32_ARRAY(&fresh.lift_q8[0][0], &g.lift_q8[0][0], 2 * XGO_LEG_COUNT);
+            TEST_ASSERT_EQUAL_INT32_ARRAY(fresh.reach_y_um, g.reach_y_um, XGO_LEG_COUNT);
         }
     }
 }

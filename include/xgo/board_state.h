@@ -94,15 +94,15 @@ typedef struct xgo_regs_s {
     xgo_regs_stats_t stats;
 } xgo_regs_t;
 
-/* XGO_GAIT_KEEPS_TANGENTS: 1 on a 64-bit host, whose RAM no budget limits:
- * the gait keeps its swing feet's end tangents across ticks there (the
- * fields below; src/core/gait.c, swing_step). The MCUs have no room for
- * them (docs/mcu.md, Budgets: device object + stack). Set by the target
- * alone, so every file of one build sees the same xgo_gait_t. */
+/* XGO_GAIT_HOST_CACHES: 1 on a 64-bit host, whose RAM no budget limits:
+ * the gait keeps more across ticks there (the fields at the end of
+ * xgo_gait_t; src/core/gait.c). The MCUs have no room for them (docs/mcu.md,
+ * Budgets: device object + stack). Set by the target alone, so every file
+ * of one build sees the same xgo_gait_t. */
 #if defined(__SIZEOF_POINTER__) && __SIZEOF_POINTER__ == 8
-#define XGO_GAIT_KEEPS_TANGENTS 1
+#define XGO_GAIT_HOST_CACHES 1
 #else
-#define XGO_GAIT_KEEPS_TANGENTS 0
+#define XGO_GAIT_HOST_CACHES 0
 #endif
 
 /* The gait generator (src/core/gait.h). */
@@ -146,13 +146,23 @@ typedef struct xgo_gait_s {
     uint8_t cache_cmd_type;
     uint8_t cache_v_type;
     uint16_t cache_swing_q16;  /* the swing time at cache_rate_fit (in what was padding) */
-#if XGO_GAIT_KEEPS_TANGENTS
+#if XGO_GAIT_HOST_CACHES
     int32_t tangent_q8[XGO_LEG_COUNT][4]; /* a swing foot's end tangents m0 x, y and
                                              m1 x, y (1/256 um per swing) */
     uint8_t tangents_kept; /* bit leg: tangent_q8 holds them for its lift-off
                               point, its landing point while that is the
                               touchdown point (land_is_td), the cached velocity
                               and cache_swing_q16 */
+    uint8_t front_kept;    /* 1: a tick under the command front_cmd,
+                              front_cmd_type, front_cmd_pace ends its front
+                              stages as the last one did (gait.c,
+                              steady_front), with these: */
+    uint8_t front_resting;
+    uint8_t front_cmd_type, front_cmd_pace;
+    int32_t front_cmd[5];  /* vx, vy, vyaw, mark time, step height as given */
+    int32_t front_mark, front_height; /* limited */
+    uint32_t front_widening; /* the yaw widening of the stride budget and reach */
+    int32_t front_w_q24;     /* the yaw rate, rad/s Q24 */
 #endif
 
     /* ---- diagnostics ---- */

@@ -199,17 +199,18 @@ static int at_stance(const xgo_gait_t *g, int leg)
 
 /* ------------------------------------------------------------ API */
 
-/* GAIT_KEEP_TANGENTS: a 64-bit host keeps the swing feet's end tangents
- * across ticks (xgo_gait_t's fields, board_state.h; swing_tangents); on
- * the 32-bit cores the RAM is budgeted, and the narrow build (tests)
- * computes as they do. */
-#define GAIT_KEEP_TANGENTS (XGO_GAIT_KEEPS_TANGENTS && !XGO_CORE_NARROW_CPU)
+/* GAIT_HOST_CACHES: a 64-bit host keeps the swing feet's end tangents
+ * (swing_tangents) and a steady tick's front stages (steady_front) across
+ * ticks, in xgo_gait_t's fields for them (board_state.h); on the 32-bit
+ * cores the RAM is budgeted, and the narrow build (tests) computes as they
+ * do. */
+#define GAIT_HOST_CACHES (XGO_GAIT_HOST_CACHES && !XGO_CORE_NARROW_CPU)
 
 /* The kept tangents no longer hold: all of them (the velocity, the cadence
  * or the swing time changed), or one leg's (a lift-off point moved). */
 static void forget_tangents(xgo_gait_t *g)
 {
-#if GAIT_KEEP_TANGENTS
+#if GAIT_HOST_CACHES
     g->tangents_kept = 0;
 #else
     (void)g;
@@ -218,11 +219,21 @@ static void forget_tangents(xgo_gait_t *g)
 
 static void forget_leg_tangents(xgo_gait_t *g, int leg)
 {
-#if GAIT_KEEP_TANGENTS
+#if GAIT_HOST_CACHES
     g->tangents_kept = (uint8_t)(g->tangents_kept & ~(1u << leg));
 #else
     (void)g;
     (void)leg;
+#endif
+}
+
+/* A tick's front stages will not repeat the last ones' (steady_front). */
+static void forget_front(xgo_gait_t *g)
+{
+#if GAIT_HOST_CACHES
+    g->front_kept = 0;
+#else
+    (void)g;
 #endif
 }
 
@@ -236,6 +247,7 @@ static void invalidate_caches(xgo_gait_t *g)
     g->cache_rate_fit = 0;
     g->land_is_td = 0;
     forget_tangents(g);
+    forget_front(g);
 }
 
 void xgo_gait_init(xgo_gait_t *g, const xgo_vec3_t stance_um[XGO_LEG_COUNT])
@@ -611,12 +623,10 @@ static uint32_t transient_rate(xgo_gait_t *g, gait_tick_t *x, uint32_t rate)
 }
 
 /* This tick's rate: the largest of the nominal, fitted and transient rates
- * (the nominal one is the fit's floor), capped per gait. */
-static void pick_cadence(xgo_gait_t *g, gait_tick_t *x)
+ * (the nominal one is the fit's floor: rate_fit, from fit_cadence), capped
+ * per gait. */
+static void pick_cadence(xgo_gait_t *g, gait_tick_t *x, uint32_t rate_fit)
 {
-    uint32_t rate_fit;
-    slew_rate_base(g, x);
-    rate_fit = fit_cadence(g, x);
     x->have_tau = 0; /* touchdown_q8 works tau out if a touchdown point moved */
     x->rate = transient_rate(g, x, rate_fit);
     if (x->rate > rate_fit) {
@@ -850,7 +860,7 @@ XGO_ALWAYS_INLINE void swing_coord(xgo_gait_t *g, const gait_tick_t *x, int leg,
                         mul_q26_weight(wt->cb, m1);
 }
 
-#if GAIT_KEEP_TANGENTS
+#if GAIT_HOST_CACHES
 /* A swing foot's end tangents (m0 x, y, m1 x, y), landing at td: from its
  * ground velocities at the lift-off point and at the landing point. They
  * only change with those points, the velocity and the swing time, so they
@@ -906,7 +916,7 @@ static void swing_step(xgo_gait_t *g, gait_tick_t *x, int leg)
 {
     const uint32_t theta = g->phase - x->t->lift[leg];
     const gait_swing_weights_t *wt = &x->weights;
-#if GAIT_KEEP_TANGENTS
+#if GAIT_HOST_CACHES
     int32_t td[2], m[4];
 #else
     int32_t td[2], f0[2], f1[2];
@@ -925,7 +935,7 @@ static void swing_step(xgo_gait_t *g, gait_tick_t *x, int leg)
         touchdown_q8(g, x, leg, td);
         land_point(g, leg, wt->follow, td);
     }
-#if GAIT_KEEP_TANGENTS
+#if GAIT_HOST_CACHES
     swing_tangents(g, x, leg, td, m);
     swing_coord(g, x, leg, 0, td[0], m[0], m[2]);
     swing_coord(g, x, leg, 1, td[1], m[1], m[3]);
@@ -944,8 +954,10 @@ static void swing_time(const xgo_gait_t *g, gait_tick_t *x)
 {
     const uint32_t r = x->rate >> 8;
     /* at the fitted rate (no transient raised it) under the table it was
-     * fitted for, the one kept with it (fit_cadence) */
-    x->swing_q16 = x->rate == g->cache_rate_fit && x->t == table_of(g->cache_v_type)
+     * fitted for, the one kept with it (fit_cadence, this tick: g->type
+     * differs from its cache_v_type only after a switch, and x->t is
+     * g->type's table) */
+    x->swing_q16 = x->rate == g->cache_rate_fit && g->type == g->cache_v_type
                        ? g->cache_swing_q16
                        : x->t->k_swing / (r == 0u ? 1u : r);
     /* < 2^16 (mul_q_u16): the rate is at least rate_fit (pick_cadence), so
@@ -1029,24 +1041,97 @@ static void publish_tick(xgo_gait_t *g, const gait_tick_t *x)
         if (home) {
             g->standing = 1;
             g->rate = 0;
+            forget_front(g); /* the next tick starts (start_or_stand) */
         }
     }
 }
 
 /* ------------------------------------------------------------ tick */
 
+#if GAIT_HOST_CACHES
+/* The front stages (limit, ramp, the nominal and fitted cadence) of a tick
+ * that gives them what the last one did: the same command after a front
+ * that changed nothing they read (kept by keep_front: walking in the gait
+ * asked for, so without a brake, no ramp, the nominal rate reached). The
+ * velocity, the rates and the caches they read are then as they left
+ * them, so they would repeat its results (the fitted cadence from its
+ * cache) and touch nothing but the limit's counter: that is done here
+ * instead, from what keep_front kept. Nothing else moves them between the
+ * two: a gait switch (type, brake, phase) needs another gait asked for,
+ * which keep_front does not keep, and a stop forgets it (publish_tick).
+ * Returns 0 (nothing done) otherwise. */
+static int steady_front(xgo_gait_t *g, const xgo_gait_command_t *cmd, gait_tick_t *x, uint32_t *rate_fit)
+{
+    if (!g->front_kept || cmd->vx_um_s != g->front_cmd[0] || cmd->vy_um_s != g->front_cmd[1] ||
+        cmd->vyaw_mdeg_s != g->front_cmd[2] || cmd->mark_time_um != g->front_cmd[3] ||
+        cmd->step_height_um != g->front_cmd[4] || cmd->type != g->front_cmd_type ||
+        cmd->pace != g->front_cmd_pace) {
+        return 0;
+    }
+    x->mark = g->front_mark;
+    x->height = g->front_height;
+    x->want_type = g->type;
+    x->resting = g->front_resting;
+    x->t = &k_tables[g->type];
+    x->hx = XGO_GAIT_HALF_STRIDE_X_UM;
+    x->hy = XGO_GAIT_HALF_STRIDE_Y_UM + g->front_widening;
+    x->reach_y = XGO_GAIT_REACH_Y_UM + (int32_t)g->front_widening;
+    x->vel[0] = g->v_ramp[0];
+    x->vel[1] = g->v_ramp[1];
+    x->w_q24 = g->front_w_q24;
+    if (g->cache_lambda_q16 < 65536) {
+        g->limited_ticks++; /* limit_speed's */
+    }
+    *rate_fit = g->cache_rate_fit;
+    return 1;
+}
+
+/* After the front stages under cmd: keep what steady_front needs when the
+ * next tick's would repeat them - no ramp (x->reach_y is set only then),
+ * the nominal rate reached (the slew stays), no gait switch pending (the
+ * brake cleared before the limit) - else forget it. */
+static void keep_front(xgo_gait_t *g, const xgo_gait_command_t *cmd, const gait_tick_t *x)
+{
+    g->front_kept = (uint8_t)(x->reach_y != 0 && x->want_type == g->type &&
+                              g->rate_base == x->t->rate[x->pace]);
+    g->front_cmd[0] = cmd->vx_um_s;
+    g->front_cmd[1] = cmd->vy_um_s;
+    g->front_cmd[2] = cmd->vyaw_mdeg_s;
+    g->front_cmd[3] = cmd->mark_time_um;
+    g->front_cmd[4] = cmd->step_height_um;
+    g->front_cmd_type = cmd->type;
+    g->front_cmd_pace = cmd->pace;
+    g->front_mark = x->mark;
+    g->front_height = x->height;
+    g->front_resting = (uint8_t)x->resting;
+    g->front_widening = x->hy - XGO_GAIT_HALF_STRIDE_Y_UM;
+    g->front_w_q24 = x->w_q24;
+}
+#endif
+
 void xgo_gait_tick(xgo_gait_t *g, const xgo_gait_command_t *cmd)
 {
     gait_tick_t x;
+    uint32_t rate_fit;
     XGO_ASSERT(g != NULL && cmd != NULL);
     g->ticks++;
-    limit_command(cmd, &x);
-    if (!start_or_stand(g, &x)) {
-        return;
+#if GAIT_HOST_CACHES
+    if (!steady_front(g, cmd, &x, &rate_fit))
+#endif
+    {
+        limit_command(cmd, &x);
+        if (!start_or_stand(g, &x)) {
+            return;
+        }
+        limit_speed(g, &x);
+        ramp_velocity(g, &x);
+        slew_rate_base(g, &x);
+        rate_fit = fit_cadence(g, &x);
+#if GAIT_HOST_CACHES
+        keep_front(g, cmd, &x);
+#endif
     }
-    limit_speed(g, &x);
-    ramp_velocity(g, &x);
-    pick_cadence(g, &x);
+    pick_cadence(g, &x, rate_fit);
     step_legs(g, &x);
     publish_tick(g, &x);
 }
