@@ -1015,7 +1015,7 @@ static void step_legs(xgo_gait_t *g, gait_tick_t *x)
     }
     swing_time(g, x);
     for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
-        if (((landed >> leg) & 1u) == 0) {
+        if (landed == 0u || ((landed >> leg) & 1u) == 0) {
             step_leg(g, x, leg, !switching);
         } else {
             publish_foot(g, leg, 0); /* placed at its touchdown point this tick */
