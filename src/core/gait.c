@@ -39,6 +39,9 @@
 #include "check.h"
 #include "gait_internal.h"
 
+#include <stddef.h> /* offsetof */
+#include <string.h> /* memcmp */
+
 #include "fixed.h"
 
 /* ------------------------------------------------------------ tables */
@@ -1060,12 +1063,21 @@ static void publish_tick(xgo_gait_t *g, const gait_tick_t *x)
  * two: a gait switch (type, brake, phase) needs another gait asked for,
  * which keep_front does not keep, and a stop forgets it (publish_tick).
  * Returns 0 (nothing done) otherwise. */
+/* steady_front compares the command's five words at its start with
+ * front_cmd in one memcmp */
+typedef char gait_front_cmd_words[offsetof(xgo_gait_command_t, vx_um_s) == 0 &&
+                                          offsetof(xgo_gait_command_t, vy_um_s) == 4 &&
+                                          offsetof(xgo_gait_command_t, vyaw_mdeg_s) == 8 &&
+                                          offsetof(xgo_gait_command_t, mark_time_um) == 12 &&
+                                          offsetof(xgo_gait_command_t, step_height_um) == 16 &&
+                                          sizeof(((xgo_gait_t *)0)->front_cmd) == 20
+                                      ? 1
+                                      : -1];
+
 static int steady_front(xgo_gait_t *g, const xgo_gait_command_t *cmd, gait_tick_t *x, uint32_t *rate_fit)
 {
-    if (!g->front_kept || cmd->vx_um_s != g->front_cmd[0] || cmd->vy_um_s != g->front_cmd[1] ||
-        cmd->vyaw_mdeg_s != g->front_cmd[2] || cmd->mark_time_um != g->front_cmd[3] ||
-        cmd->step_height_um != g->front_cmd[4] || cmd->type != g->front_cmd_type ||
-        cmd->pace != g->front_cmd_pace) {
+    if (!g->front_kept || memcmp(cmd, g->front_cmd, sizeof g->front_cmd) != 0 ||
+        cmd->type != g->front_cmd_type || cmd->pace != g->front_cmd_pace) {
         return 0;
     }
     x->mark = g->front_mark;
