@@ -96,7 +96,7 @@ typedef struct xgo_regs_s {
 
 /* XGO_GAIT_HOST_CACHES: 1 on a 64-bit host, whose RAM no budget limits:
  * the gait keeps more across ticks there (the fields at the end of
- * xgo_gait_t; src/core/gait.c). The MCUs have no room for them (docs/mcu.md,
+ * xgo_gait_t's caches; src/core/gait.c). The MCUs have no room for them (docs/mcu.md,
  * Budgets: device object + stack). Set by the target alone, so every file
  * of one build sees the same xgo_gait_t. */
 #if defined(__SIZEOF_POINTER__) && __SIZEOF_POINTER__ == 8
