@@ -656,6 +656,75 @@ static void test_feet_in_the_air_measured_only_when_needed(void)
     TEST_ASSERT_GREATER_THAN_UINT(10000u, skipped);
 }
 
+static uint32_t fnv32(uint32_t h, uint32_t v)
+{
+    unsigned i;
+    for (i = 0; i < 4u; i++) {
+        h = (h ^ ((v >> (8u * i)) & 0xFFu)) * 16777619u;
+    }
+    return h;
+}
+
+/* What the board's sensing half keeps, tick by tick, as it walks, turns,
+ * shifts and yaws its body, bobs, stands, runs an action and takes leg
+ * and servo commands: the odometry's state, the accelerometer and
+ * gyroscope model's, the measured contacts and the IMU's angles, hashed
+ * every tick. The digest is the one the code gave before its host forms
+ * (measure_feet's walking case first, inertial.c's one-frame tick,
+ * odometry's whole-array copy; computed at 3fcb945), and the _narrow
+ * build of this suite takes the MCU's forms: fast path and plain path
+ * give the same state at every tick. */
+#define SENSING_DIGEST 0x1c35f65fu
+static void test_sensing_state_over_a_session_is_the_plain_paths(void)
+{
+    static const struct {
+        uint8_t reg, value;
+        uint16_t ticks;
+    } script[] = {
+        {XGO_REG_VX, 0xE0, 0},          {XGO_REG_VYAW, 0xA0, 0},       {XGO_REG_BODY_ROLL, 0xA0, 0},
+        {XGO_REG_BODY_Z, 0x60, 0},      {XGO_REG_PERIOD_PITCH, 0x40, 1500},
+        {XGO_REG_VX, 0x80, 0},          {XGO_REG_VY, 0x20, 0},         {XGO_REG_BODY_YAW, 0x90, 800},
+        {XGO_REG_VY, 0x80, 0},          {XGO_REG_VYAW, 0x80, 0},       {XGO_REG_PERIOD_PITCH, 0x00, 500},
+        {XGO_REG_PERIOD_Z, 0x30, 0},    {XGO_REG_VX, 0x30, 600},       {XGO_REG_VX, 0x80, 0},
+        {XGO_REG_PERIOD_Z, 0x00, 0},    {XGO_REG_BODY_YAW, 0x80, 300}, {XGO_REG_ACTION, 0x0B, 1500},
+        {XGO_FOOT_REG(0, XGO_AXIS_X), 0x60, 200}, {XGO_FOOT_REG(1, XGO_AXIS_Z), 0xA0, 200},
+        {XGO_REG_SERVO12, 0x90, 300},   {XGO_REG_ACTION, 0xFF, 600},
+    };
+    const xgo_motion_t *m = &board.motion;
+    uint32_t h = 2166136261u;
+    unsigned i, k, j;
+    for (i = 0; i < sizeof script / sizeof script[0]; i++) {
+        wr(script[i].reg, script[i].value);
+        for (k = 0; k < script[i].ticks; k++) {
+            ticks(1);
+            h = fnv32(h, (uint32_t)m->odom.x_q8);
+            h = fnv32(h, (uint32_t)(m->odom.x_q8 >> 32));
+            h = fnv32(h, (uint32_t)m->odom.y_q8);
+            h = fnv32(h, (uint32_t)(m->odom.y_q8 >> 32));
+            h = fnv32(h, m->odom.yaw);
+            h = fnv32(h, (uint32_t)m->odom.last_d_q8[0]);
+            h = fnv32(h, (uint32_t)m->odom.last_d_q8[1]);
+            h = fnv32(h, (uint32_t)m->odom.last_dyaw);
+            h = fnv32(h, m->odom.extrapolated_ticks);
+            h = fnv32(h, (uint32_t)m->odom.prev_contact << 8 | m->odom.prev_unmeasured);
+            for (j = 0; j < 3u; j++) {
+                h = fnv32(h, (uint32_t)m->inertial.accel_q8[j]);
+                h = fnv32(h, (uint32_t)m->inertial.gyro_q8[j]);
+            }
+            h = fnv32(h, (uint32_t)m->contact << 8 | m->feet_as_solved);
+            h = fnv32(h, (uint32_t)m->imu.roll_mdeg);
+            h = fnv32(h, (uint32_t)m->imu.pitch_mdeg);
+            h = fnv32(h, (uint32_t)m->imu.yaw_mdeg);
+        }
+    }
+    {
+        char msg[48];
+        snprintf(msg, sizeof msg, "sensing digest %08lx", (unsigned long)h);
+        TEST_MESSAGE(msg);
+    }
+    TEST_ASSERT_EQUAL_HEX32(SENSING_DIGEST, h);
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -680,5 +749,6 @@ int main(void)
     RUN_TEST(test_odometry_arithmetic_is_the_same_on_every_core);
     RUN_TEST(test_cross_product_is_the_wide_one);
     RUN_TEST(test_feet_in_the_air_measured_only_when_needed);
+    RUN_TEST(test_sensing_state_over_a_session_is_the_plain_paths);
     return UNITY_END();
 }

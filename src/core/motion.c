@@ -13,6 +13,7 @@
 #include "motion_internal.h"
 #include "reach.h"
 #include "settle.h"
+#include "wide.h" /* XGO_CORE_DIV64_NATIVE */
 
 /* The stroke checked grows by this when a planted foot runs out of reach
  * anyway (up to the max), see reachable_target. */
@@ -613,7 +614,19 @@ static XGO_OWN_FRAME void measure_later_feet(xgo_motion_t *m)
 }
 #endif
 
+/* On a 64-bit host with the odometry measure_feet tests for the usual
+ * walking tick first and leaves the rest to this, out of line, so that
+ * the usual case makes no frame for its arrays (below). Elsewhere
+ * measure_feet is this: on an MCU the second call and the tests again
+ * would cost a swing's start more (Cortex-M0: the p99 tick 16
+ * instructions) than the usual tick saves. */
+#if XGO_WITH_ODOMETRY && XGO_CORE_DIV64_NATIVE
+#define MEASURE_FEET_SPLIT 1
+static XGO_OWN_FRAME void measure_feet_fk(xgo_motion_t *m, int contact_known, int at_solved)
+#else
+#define MEASURE_FEET_SPLIT 0
 static XGO_OWN_FRAME void measure_feet(xgo_motion_t *m, int contact_known, int at_solved)
+#endif
 {
     xgo_vec3_t machine_fk[XGO_LEG_COUNT];
     const xgo_vec3_t *machine = machine_fk;
@@ -676,6 +689,24 @@ static XGO_OWN_FRAME void measure_feet(xgo_motion_t *m, int contact_known, int a
     }
     xgo_odometry_update_measured(&m->odom, machine, m->contact, (uint8_t)measured);
 }
+
+#if MEASURE_FEET_SPLIT
+static XGO_OWN_FRAME void measure_feet(xgo_motion_t *m, int contact_known, int at_solved)
+{
+    /* Walking (about eleven ticks in twelve of a trot): the joints where
+     * the IK put them, the contacts known and no foot the odometry holds
+     * unmeasured; measure_feet_fk would hand the IK's feet to the
+     * odometry as they are, as this does, in a tail call with no frame
+     * (x86-64: 25 instructions a tick less). */
+    if (contact_known && at_solved > 0 && m->ik_cache.valid && m->ik_cache.projected == 0 &&
+        xgo_odometry_unmeasured(&m->odom) == 0) {
+        m->feet_as_solved = 1;
+        xgo_odometry_update_measured(&m->odom, m->ik_cache.feet, m->contact, 0x0Fu);
+        return;
+    }
+    measure_feet_fk(m, contact_known, at_solved);
+}
+#endif
 
 /* Body-frame feet for observers, worked out when asked (not every tick: the
  * control loop needs only the machine frame's), from what measure_feet
