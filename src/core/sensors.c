@@ -124,37 +124,31 @@ void xgo_imu_reset_yaw(xgo_imu_t *imu)
 /* a + b wrapped into [-180000, 180000): the sum of int32 angles, clamped to
  * int32 first (angles beyond +-2147483 degrees are no angles a tick makes),
  * so no 64-bit remainder is needed. Inline: a sum already an angle (the
- * common case) makes no call. On a 32-bit core the sum is formed in 32
- * bits: one of the two is small (under 2^20: the tilt a ramp and a shove
- * add, or the integrated yaw), so a sum that overflowed lies near -2^31 or
- * 2^31, never in the range, and takes the exact path; no 64-bit value
- * either. */
+ * common case) makes no call. The sum is formed in 32 bits: one of the two
+ * is small (under 2^20: the tilt a ramp and a shove add, or the integrated
+ * yaw), so a sum that overflowed lies near -2^31 or 2^31, never in the
+ * range nor a turn from it, and takes the exact path; no 64-bit value
+ * either. On a 64-bit host a sum within a turn of the range (the
+ * integrated yaw, at most one turn, plus a body's yaw: a robot that turned
+ * half a turn or more, about half the ticks of one that keeps turning) is
+ * wrapped here too, without the calls (x86-64: their saved registers and
+ * about 20 instructions); on an MCU that would cost flash for a tick that
+ * is no worst case. */
 XGO_ALWAYS_INLINE int32_t wrap_sum(int32_t a, int32_t b)
 {
-#if XGO_CORE_DIV64_NATIVE
-    /* A sum within a turn of the range (the integrated yaw, at most one
-     * turn, plus a body's yaw: a robot that turned half a turn or more,
-     * about half the ticks of one that keeps turning) is one turn away:
-     * wrapped here, without the calls (x86-64: their saved registers and
-     * about 20 instructions). */
-    const int64_t s = (int64_t)a + b;
-    if (s >= -180000 && s < 180000) {
-        return (int32_t)s;
-    }
-    if (s >= 180000 && s < 540000) {
-        return (int32_t)s - 360000;
-    }
-    if (s >= -540000 && s < -180000) {
-        return (int32_t)s + 360000;
-    }
-    return xgo_wrap_mdeg(xgo_sat32(s));
-#else
     const int32_t s = (int32_t)((uint32_t)a + (uint32_t)b);
     if ((uint32_t)s + 180000u < 360000u) {
         return s;
     }
-    return xgo_wrap_mdeg(xgo_sat32((int64_t)a + b));
+#if XGO_CORE_DIV64_NATIVE
+    if ((uint32_t)s - 180000u < 360000u) { /* [180000, 540000) */
+        return s - 360000;
+    }
+    if ((uint32_t)s + 540000u < 360000u) { /* [-540000, -180000) */
+        return s + 360000;
+    }
 #endif
+    return xgo_wrap_mdeg(xgo_sat32((int64_t)a + b));
 }
 
 /* yaw_acc wraps at one turn: 360 degrees in mdeg * XGO_TICK_HZ. */
