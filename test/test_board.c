@@ -8,6 +8,8 @@
 #include <string.h>
 
 #include "board_io.h"
+#include "fixed.h"           /* xgo_sin */
+#include "motion_internal.h" /* xgo_motion_asked_pose */
 #include "unity.h"
 #include "xgo/board.h"
 #include "xgo/profile.h"
@@ -581,6 +583,89 @@ static void test_joint_reads_give_the_bytes_a_tick_stored(void)
     }
 }
 
+static int32_t clamp_range(int32_t v, const xgo_range_t *r)
+{
+    return v < r->lo ? r->lo : (v > r->hi ? r->hi : v);
+}
+
+static int32_t *pose_axis(xgo_body_pose_t *p, unsigned axis) /* axes roll pitch yaw x y z */
+{
+    int32_t *f[6];
+    f[0] = &p->roll_mdeg, f[1] = &p->pitch_mdeg, f[2] = &p->yaw_mdeg;
+    f[3] = &p->x_um, f[4] = &p->y_um, f[5] = &p->z_um;
+    return f[axis];
+}
+
+/* The pose the registers ask for (on a host laid out with vector moves),
+ * for every mix of periodic axes and random values, against docs/motion.md
+ * written out: a static axis its value, a periodic one its phase advanced
+ * by its step and the sinusoid around the range's middle (base: the
+ * middle, spread: the amplitude); roll and pitch within their ranges. */
+static void test_the_asked_pose_is_each_axis_static_or_periodic(void)
+{
+    xgo_motion_t *m = &board.motion;
+    const xgo_profile_t *p;
+    uint32_t seed = 0x9E3779B9u;
+    unsigned n, axis;
+    xgo_board_init(&board, NULL);
+    p = m->profile;
+    for (n = 0; n < 20000; n++) {
+        xgo_body_pose_t pose, base, spread, want_pose, want_base, want_spread;
+        uint32_t phase[6];
+        m->decoded.valid = 1;
+        m->decoded.periodic = (uint8_t)(n % 64u);
+        m->stab_mdeg[0] = m->stab_mdeg[1] = 0;
+        for (axis = 0; axis < 6; axis++) {
+            const xgo_range_t *range = axis < 3 ? &p->body_mdeg[axis] : &p->body_um[axis - 3];
+            const int periodic = (m->decoded.periodic >> axis) & 1u;
+            m->decoded.body[axis] = (int32_t)(xgo_test_xorshift32(&seed) % 400001u) - 200000;
+            m->periodic_phase[axis] = periodic ? xgo_test_xorshift32(&seed) : 0u;
+            phase[axis] = m->periodic_phase[axis] + (uint32_t)m->decoded.body[axis];
+            if (periodic) {
+                const int32_t mid = (range->lo + range->hi) / 2, amp = (range->hi - range->lo) / 4;
+                *pose_axis(&want_pose, axis) =
+                    mid + (int32_t)(((int64_t)amp * xgo_sin(phase[axis]) + (1 << 29)) >> 30);
+                *pose_axis(&want_base, axis) = mid;
+                *pose_axis(&want_spread, axis) = amp;
+            } else {
+                *pose_axis(&want_pose, axis) = *pose_axis(&want_base, axis) = m->decoded.body[axis];
+                *pose_axis(&want_spread, axis) = 0;
+            }
+        }
+        want_pose.roll_mdeg = clamp_range(want_pose.roll_mdeg, &p->body_mdeg[0]);
+        want_pose.pitch_mdeg = clamp_range(want_pose.pitch_mdeg, &p->body_mdeg[1]);
+        want_base.roll_mdeg = clamp_range(want_base.roll_mdeg, &p->body_mdeg[0]);
+        want_base.pitch_mdeg = clamp_range(want_base.pitch_mdeg, &p->body_mdeg[1]);
+        xgo_motion_asked_pose(m, &board.regs, &pose, &base, &spread);
+        TEST_ASSERT_EQUAL_MEMORY(&want_pose, &pose, sizeof pose);
+        TEST_ASSERT_EQUAL_MEMORY(&want_base, &base, sizeof base);
+        TEST_ASSERT_EQUAL_MEMORY(&want_spread, &spread, sizeof spread);
+        for (axis = 0; axis < 6; axis++) {
+            TEST_ASSERT_EQUAL_UINT32((m->decoded.periodic >> axis) & 1u ? phase[axis] : 0u, m->periodic_phase[axis]);
+        }
+    }
+}
+
+/* A periodic motion turned off and on again starts over from its phase 0,
+ * as it did the first time (the phase of an axis without one is 0). */
+static void test_a_periodic_motion_turned_on_again_starts_over(void)
+{
+    static xgo_board_t again;
+    xgo_board_init(&board, NULL);
+    xgo_board_init(&again, NULL);
+    xgo_test_write1(&board, XGO_REG_PERIOD_ROLL, 0x30, 0);
+    xgo_test_ticks(&board, 300);
+    xgo_test_write1(&board, XGO_REG_PERIOD_ROLL, 0, 0);
+    xgo_test_ticks(&board, 1);
+    TEST_ASSERT_EQUAL_UINT32(0, board.motion.periodic_phase[0]);
+    xgo_test_write1(&board, XGO_REG_PERIOD_ROLL, 0x30, 0);
+    xgo_test_write1(&again, XGO_REG_PERIOD_ROLL, 0x30, 0);
+    xgo_test_ticks(&board, 1);
+    xgo_test_ticks(&again, 1);
+    TEST_ASSERT_EQUAL_UINT32(again.motion.periodic_phase[0], board.motion.periodic_phase[0]);
+    TEST_ASSERT_NOT_EQUAL(0, board.motion.periodic_phase[0]);
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -605,5 +690,7 @@ int main(void)
     RUN_TEST(test_upgrade_request_is_answered_at_once);
     RUN_TEST(test_turn_command_reads_turning_until_the_tick_decides);
     RUN_TEST(test_joint_reads_give_the_bytes_a_tick_stored);
+    RUN_TEST(test_the_asked_pose_is_each_axis_static_or_periodic);
+    RUN_TEST(test_a_periodic_motion_turned_on_again_starts_over);
     return UNITY_END();
 }

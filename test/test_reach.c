@@ -4,7 +4,8 @@
  * the vendor's ranges, standing and trotting, and the board holding it: the
  * IMU reports the attitude the legs produce, measured here from the FK of
  * the actual joints (the plane of the planted feet in the body frame).
- * Prints the reachable envelope (docs/motion.md has it).
+ * Prints the reachable envelope (docs/motion.md has it). And the body
+ * following the pose handed out (src/core/follow.c) against its rule.
  */
 #include <math.h>
 #include <stdio.h>
@@ -12,6 +13,8 @@
 #include <string.h>
 
 #include "board_io.h"
+#include "fixed.h"
+#include "follow.h"
 #include "kinematics.h"
 #include "motion.h"
 #include "reach.h"
@@ -341,6 +344,197 @@ static void test_trotting_at_the_pitch_extreme_keeps_the_feet_down(void)
     TEST_ASSERT_EQUAL_INT32(board.motion.pose.pitch_mdeg, rpy[1]);
 }
 
+/* xorshift32: every bit random enough for picking cases */
+static uint32_t next_random(uint32_t *x)
+{
+    *x ^= *x << 13;
+    *x ^= *x >> 17;
+    *x ^= *x << 5;
+    return *x;
+}
+
+static int same_pose(const xgo_body_pose_t *a, const xgo_body_pose_t *b)
+{
+    return a->x_um == b->x_um && a->y_um == b->y_um && a->z_um == b->z_um && a->roll_mdeg == b->roll_mdeg &&
+           a->pitch_mdeg == b->pitch_mdeg && a->yaw_mdeg == b->yaw_mdeg;
+}
+
+static int32_t *pose_field(xgo_body_pose_t *p, unsigned i)
+{
+    int32_t *f[6];
+    f[0] = &p->x_um, f[1] = &p->y_um, f[2] = &p->z_um;
+    f[3] = &p->roll_mdeg, f[4] = &p->pitch_mdeg, f[5] = &p->yaw_mdeg;
+    return f[i % 6u];
+}
+
+/* The tick under keys it has (on a host a shortcut hands out the pose
+ * found) and under keys that differ in one value anywhere (base, spread,
+ * stroke, standing or walking): the search starts over exactly when they
+ * differ, and the pose handed out under the old keys is now shifted by
+ * the shift found (the whole deviation), the result saying whether it
+ * differs from now. */
+static void test_the_tick_searches_again_exactly_when_a_key_changes(void)
+{
+    static xgo_reach_t s;
+    uint32_t seed = 3u;
+    unsigned n, i, kept = 0;
+    for (n = 0; n < 20000; n++) {
+        xgo_body_pose_t now, base, spread, out;
+        xgo_vec3_t stroke[XGO_LEG_COUNT];
+        const xgo_vec3_t *given;
+        const unsigned change = next_random(&seed) % 8u; /* 0..2 none, else what changes */
+        int moved;
+        xgo_reach_init(&s, &stand);
+        s.valid = 1;
+        s.searching = next_random(&seed) % 8u == 0;
+        s.scale = (uint8_t)(next_random(&seed) % 4u == 0 ? next_random(&seed) % 8u : 8u);
+        s.walking = next_random(&seed) % 2u;
+        for (i = 0; i < 6; i++) {
+            *pose_field(&s.key, i) = (int32_t)(next_random(&seed) % 20001u) - 10000;
+            *pose_field(&s.spread, i) = next_random(&seed) % 3u == 0 ? (int32_t)(next_random(&seed) % 5001u) : 0;
+            *pose_field(&now, i) = *pose_field(&s.key, i) + (int32_t)(next_random(&seed) % 2001u) - 1000;
+        }
+        for (i = 0; i < XGO_LEG_COUNT; i++) {
+            s.stroke[i].x = (int32_t)(next_random(&seed) % 40001u) - 20000;
+            s.stroke[i].y = (int32_t)(next_random(&seed) % 20001u) - 10000;
+            s.stroke[i].z = 0;
+        }
+        s.found.x = next_random(&seed) % 4u == 0 ? 0 : (int32_t)(next_random(&seed) % 60001u) - 30000;
+        s.found.y = next_random(&seed) % 2u == 0 ? 0 : (int32_t)(next_random(&seed) % 60001u) - 30000;
+        s.found.z = next_random(&seed) % 2u == 0 ? 0 : (int32_t)(next_random(&seed) % 60001u) - 30000;
+        base = s.key;
+        spread = s.spread;
+        memcpy(stroke, s.stroke, sizeof stroke);
+        given = s.walking ? stroke : NULL;
+        if (change == 3) {
+            (*pose_field(&base, next_random(&seed)))++;
+        } else if (change == 4) {
+            (*pose_field(&spread, next_random(&seed))) -= 1 + (int32_t)(next_random(&seed) % 1000u);
+        } else if (change == 5 && s.walking) {
+            const unsigned leg = next_random(&seed) % XGO_LEG_COUNT, axis = next_random(&seed) % 3u;
+            int32_t *v = axis == 0 ? &stroke[leg].x : axis == 1 ? &stroke[leg].y : &stroke[leg].z;
+            *v ^= 1 << (next_random(&seed) % 31u);
+        } else if (change >= 5) {
+            given = s.walking ? NULL : stroke; /* standing <-> walking */
+        }
+        {
+            const int was_held = change < 3 && !s.searching && s.scale == 8;
+            const xgo_vec3_t found = s.found;
+            moved = xgo_reach_tick(&s, prof, &now, &base, &spread, stance, given, &out);
+            TEST_ASSERT_EQUAL_INT(!same_pose(&out, &now), moved);
+            TEST_ASSERT_TRUE(same_pose(&out, &s.held));
+            TEST_ASSERT_TRUE(same_pose(&base, &s.key)); /* the keys are those given now */
+            TEST_ASSERT_TRUE(same_pose(&spread, &s.spread));
+            TEST_ASSERT_EQUAL_INT(given != NULL, s.walking);
+            if (given != NULL) {
+                TEST_ASSERT_EQUAL_INT32_ARRAY(&given[0].x, &s.stroke[0].x, 3 * XGO_LEG_COUNT);
+            }
+            if (was_held) {
+                kept++;
+                TEST_ASSERT_EQUAL_INT32(now.x_um + found.x, out.x_um);
+                TEST_ASSERT_EQUAL_INT32(now.y_um + found.y, out.y_um);
+                TEST_ASSERT_EQUAL_INT32(now.z_um + found.z, out.z_um);
+                TEST_ASSERT_EQUAL_INT32(now.roll_mdeg, out.roll_mdeg);
+                TEST_ASSERT_EQUAL_INT32(now.pitch_mdeg, out.pitch_mdeg);
+                TEST_ASSERT_EQUAL_INT32(now.yaw_mdeg, out.yaw_mdeg);
+            }
+        }
+    }
+    TEST_ASSERT_TRUE(kept > 3000u && kept < 10000u);
+}
+
+/* follow.h's rule for one channel, written out plainly: a step straight
+ * to the target when within the speed and acceleration bounds, else
+ * toward it at the speed that still stops there; the output rounded. */
+static int32_t follow_rule(int32_t *pos, int32_t *vel, int32_t target, int32_t speed, int32_t accel)
+{
+    const int64_t e = (int64_t)target * 256 - *pos, dv = e - *vel;
+    if (e >= -speed && e <= speed && dv >= -accel && dv <= accel) {
+        *vel = (int32_t)e;
+        *pos = target * 256;
+    } else {
+        const uint64_t ae = (uint64_t)(e < 0 ? -e : e);
+        int64_t brake = (int64_t)xgo_isqrt64((uint64_t)accel * (uint64_t)accel / 4u + 2u * (uint64_t)accel * ae) -
+                        accel / 2;
+        int64_t step;
+        brake = brake > (int64_t)ae ? (int64_t)ae : brake;
+        brake = brake > speed ? speed : brake;
+        step = (e < 0 ? -brake : brake) - *vel;
+        step = step > accel ? accel : (step < -accel ? -accel : step);
+        *vel += (int32_t)step;
+        *pos += *vel;
+    }
+    return (int32_t)floor((double)*pos / 256.0 + 0.5);
+}
+
+/* A channel's error (or its change in velocity) near a bound b: 0, on it,
+ * inside it; with `beyond` also just beyond it or anywhere within four
+ * times it. */
+static int32_t near_bound(uint32_t r, int32_t b, int beyond)
+{
+    const int32_t sign = (r >> 3) & 1u ? -1 : 1;
+    switch ((r >> 4) % (beyond ? 8u : 6u)) {
+    case 0: return 0;
+    case 1: case 2: return sign * b;
+    case 3: case 4: case 5: return sign * (int32_t)((r >> 7) % (uint32_t)b);
+    case 6: return sign * (b + 1);
+    default: return sign * (int32_t)((r >> 7) % (uint32_t)(4 * b));
+    }
+}
+
+/* The follow's tick (on a host all six channels at once while each steps
+ * straight to its target, else one by one) does what the rule says, over
+ * random states and targets: resting, on the bounds, just beyond them,
+ * braking. */
+static void test_the_body_follows_its_target_by_the_rule(void)
+{
+    const int32_t speed[6] = {XGO_FOLLOW_SPEED_UM_S * 256 / XGO_TICK_HZ, XGO_FOLLOW_SPEED_UM_S * 256 / XGO_TICK_HZ,
+                              XGO_FOLLOW_SPEED_UM_S * 256 / XGO_TICK_HZ, XGO_FOLLOW_SPEED_MDEG_S * 256 / XGO_TICK_HZ,
+                              XGO_FOLLOW_SPEED_MDEG_S * 256 / XGO_TICK_HZ, XGO_FOLLOW_SPEED_MDEG_S * 256 / XGO_TICK_HZ};
+    const int32_t accel[6] = {
+        (int32_t)((int64_t)XGO_FOLLOW_ACCEL_UM_S2 * 256 / XGO_TICK_HZ / XGO_TICK_HZ),
+        (int32_t)((int64_t)XGO_FOLLOW_ACCEL_UM_S2 * 256 / XGO_TICK_HZ / XGO_TICK_HZ),
+        (int32_t)((int64_t)XGO_FOLLOW_ACCEL_UM_S2 * 256 / XGO_TICK_HZ / XGO_TICK_HZ),
+        (int32_t)((int64_t)XGO_FOLLOW_ACCEL_MDEG_S2 * 256 / XGO_TICK_HZ / XGO_TICK_HZ),
+        (int32_t)((int64_t)XGO_FOLLOW_ACCEL_MDEG_S2 * 256 / XGO_TICK_HZ / XGO_TICK_HZ),
+        (int32_t)((int64_t)XGO_FOLLOW_ACCEL_MDEG_S2 * 256 / XGO_TICK_HZ / XGO_TICK_HZ)};
+    uint32_t seed = 7u;
+    unsigned n, c, direct = 0;
+    for (n = 0; n < 200000; n++) {
+        xgo_follow_t f, want;
+        xgo_body_pose_t target, out;
+        int32_t t[6], o[6];
+        int all_direct = 1;
+        for (c = 0; c < 6; c++) {
+            int32_t e, dv;
+            t[c] = (int32_t)(next_random(&seed) % 400001u) - 200000;
+            e = n % 2 && next_random(&seed) % 16u == 0 ? (int32_t)(next_random(&seed) % 20000001u) - 10000000
+                                                       : near_bound(next_random(&seed), speed[c], n % 2);
+            dv = near_bound(next_random(&seed), accel[c], n % 2);
+            f.pos_q8[c] = t[c] * 256 - e;
+            f.vel_q8[c] = e - dv;
+            all_direct = all_direct && e >= -speed[c] && e <= speed[c] && dv >= -accel[c] && dv <= accel[c];
+        }
+        direct += all_direct;
+        want = f;
+        for (c = 0; c < 6; c++) {
+            o[c] = follow_rule(&want.pos_q8[c], &want.vel_q8[c], t[c], speed[c], accel[c]);
+        }
+        target.x_um = t[0], target.y_um = t[1], target.z_um = t[2];
+        target.roll_mdeg = t[3], target.pitch_mdeg = t[4], target.yaw_mdeg = t[5];
+        xgo_follow_tick(&f, &target, &out);
+        TEST_ASSERT_EQUAL_INT32_ARRAY(want.pos_q8, f.pos_q8, 6);
+        TEST_ASSERT_EQUAL_INT32_ARRAY(want.vel_q8, f.vel_q8, 6);
+        TEST_ASSERT_EQUAL_INT32(o[0], out.x_um);
+        TEST_ASSERT_EQUAL_INT32(o[1], out.y_um);
+        TEST_ASSERT_EQUAL_INT32(o[2], out.z_um);
+        TEST_ASSERT_EQUAL_INT32(o[3], out.roll_mdeg);
+        TEST_ASSERT_EQUAL_INT32(o[4], out.pitch_mdeg);
+        TEST_ASSERT_EQUAL_INT32(o[5], out.yaw_mdeg);
+    }
+    TEST_ASSERT_TRUE(direct > 50000u && direct < 150000u); /* both ways, often */
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -349,5 +543,7 @@ int main(void)
     RUN_TEST(test_print_the_envelope);
     RUN_TEST(test_the_imu_reports_what_the_legs_do);
     RUN_TEST(test_trotting_at_the_pitch_extreme_keeps_the_feet_down);
+    RUN_TEST(test_the_tick_searches_again_exactly_when_a_key_changes);
+    RUN_TEST(test_the_body_follows_its_target_by_the_rule);
     return UNITY_END();
 }

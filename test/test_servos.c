@@ -210,6 +210,40 @@ static void test_follow_with_every_joint_loaded_is_set_targets_then_tick(void)
     TEST_ASSERT_TRUE(reached > 2000u && short_of > 2000u); /* both ways, often */
 }
 
+/* The every-joint-loaded follow decides joint by joint at the edges: a
+ * target one inside or outside the range, an error one within or beyond
+ * the step (the others resting, so only that joint decides), at angles at
+ * and next to the limits, for steps of 0, 1, some and the cap. */
+static void test_follow_with_every_joint_loaded_decides_at_the_edges(void)
+{
+    static const int32_t steps[] = {0, 1, 700, 1 << 30};
+    unsigned i, a, e, k, reached = 0;
+    for (i = 0; i < XGO_SERVO_COUNT; i++) {
+        const int32_t lo = limits(i)->lo, hi = limits(i)->hi;
+        const int32_t at[] = {lo, lo + 1, lo / 2 + hi / 2, hi - 1, hi};
+        for (a = 0; a < sizeof at / sizeof at[0]; a++) {
+            for (k = 0; k < sizeof steps / sizeof steps[0]; k++) {
+                const int32_t step = steps[k];
+                const int32_t reach = step > 100000 ? 100000 : step; /* the cap: beyond any span */
+                const int32_t t[] = {lo - 1, lo, hi, hi + 1, at[a] - reach - 1, at[a] - reach,
+                                     at[a] + reach, at[a] + reach + 1};
+                for (e = 0; e < sizeof t / sizeof t[0]; e++) {
+                    int32_t q[XGO_SERVO_COUNT];
+                    unsigned j;
+                    for (j = 0; j < XGO_SERVO_COUNT; j++) {
+                        q[j] = limits(j)->lo / 2 + limits(j)->hi / 2 + (int32_t)j;
+                    }
+                    q[i] = at[a];
+                    xgo_servos_init(&s, p, q);
+                    q[i] = t[e];
+                    reached += follow_checked(q, step) == 1;
+                }
+            }
+        }
+    }
+    TEST_ASSERT_TRUE(reached > 200u && reached < 1700u); /* both ways */
+}
+
 /* Set zero: the current angle joins the offset and reads 0 from then on
  * (clamped into the limits); offsets stay in [-180, 180) degrees. */
 static void test_set_zero_moves_the_angle_into_the_offset_within_a_turn(void)
@@ -251,6 +285,7 @@ int main(void)
     RUN_TEST(test_limp_joints_ignore_targets_and_reload_without_a_jump);
     RUN_TEST(test_follow_is_set_targets_then_tick);
     RUN_TEST(test_follow_with_every_joint_loaded_is_set_targets_then_tick);
+    RUN_TEST(test_follow_with_every_joint_loaded_decides_at_the_edges);
     RUN_TEST(test_set_zero_moves_the_angle_into_the_offset_within_a_turn);
     return UNITY_END();
 }

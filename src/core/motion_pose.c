@@ -8,6 +8,7 @@
 #include "codec.h"
 #include "fixed.h"
 #include "motion_internal.h"
+#include "wide.h" /* XGO_CORE_DIV64_NATIVE: a 64-bit host (command_decoding) */
 
 #define PERIODIC_AXES 6 /* roll, pitch, yaw, x, y, z */
 
@@ -87,6 +88,12 @@ static void decode_now(xgo_motion_t *m, const xgo_regs_t *r)
         if (b != 0) {
             m->decoded.periodic = (uint8_t)(m->decoded.periodic | (1u << axis));
             v[axis] = (int32_t)periodic_step(b);
+        } else {
+            /* an axis without a motion starts the next one from phase 0:
+             * cleared here, not every tick (the pose is asked for in every
+             * tick that decodes, motion.c, and only a decoding changes
+             * which axes move) */
+            m->periodic_phase[axis] = 0;
         }
     }
 }
@@ -111,6 +118,12 @@ static void periodic_axis(xgo_motion_t *m, unsigned axis, const xgo_range_t *ran
     *v = *mid + wave(m->periodic_phase[axis], *amp);
 }
 
+/* The pose of the registers now; base: the same with each periodic
+ * channel at its middle; spread: those channels' amplitudes, 0 elsewhere.
+ * A periodic motion replaces the static value on its axis: a sinusoid of
+ * half the axis' range around its middle (the spec's "half of the position
+ * limit"), starting at the middle. (Field by field: no memcpy/memset calls,
+ * every tick.) */
 /* One axis of the pose of the registers (body_pose_from_registers): its
  * static value, or its periodic motion. Inline, once per axis: each axis's
  * fields are then constant offsets (no arrays copied into the poses). */
@@ -120,18 +133,11 @@ XGO_ALWAYS_INLINE void pose_axis(xgo_motion_t *m, unsigned axis, const xgo_range
     if (((m->decoded.periodic >> axis) & 1u) == 0) {
         *v = *mid = m->decoded.body[axis];
         *amp = 0;
-        m->periodic_phase[axis] = 0;
         return;
     }
     periodic_axis(m, axis, range, v, mid, amp);
 }
 
-/* The pose of the registers now; base: the same with each periodic
- * channel at its middle; spread: those channels' amplitudes, 0 elsewhere.
- * A periodic motion replaces the static value on its axis: a sinusoid of
- * half the axis' range around its middle (the spec's "half of the position
- * limit"), starting at the middle. (Field by field: no memcpy/memset calls,
- * every tick.) */
 static void body_pose_from_registers(xgo_motion_t *m, const xgo_regs_t *r, xgo_body_pose_t *pose,
                                      xgo_body_pose_t *base, xgo_body_pose_t *spread)
 {
@@ -180,9 +186,9 @@ static void level(const xgo_motion_t *m, xgo_body_pose_t *pose, xgo_body_pose_t 
     base->pitch_mdeg = clamp32(base->pitch_mdeg + sp, pitch->lo, pitch->hi);
 }
 
-void xgo_motion_gait_command(xgo_motion_t *m, const xgo_regs_t *r, xgo_gait_command_t *cmd)
+/* The gait command of the decoded registers. */
+XGO_ALWAYS_INLINE void command_now(const xgo_motion_t *m, const xgo_regs_t *r, xgo_gait_command_t *cmd)
 {
-    decode_registers(m, r);
     /* field by field, no memset call (every tick; padding is never read) */
     cmd->step_height_um = 0;
     cmd->vx_um_s = m->decoded.velocity[0];
@@ -191,6 +197,30 @@ void xgo_motion_gait_command(xgo_motion_t *m, const xgo_regs_t *r, xgo_gait_comm
     cmd->mark_time_um = m->decoded.mark_time_um;
     cmd->type = xgo_regs_at(r, XGO_REG_GAIT_TYPE); /* constant slots: loads, no calls */
     cmd->pace = xgo_regs_at(r, XGO_REG_MOVE_MODE);
+}
+
+#if XGO_CORE_DIV64_NATIVE
+/* The first command after a write: decoded first. Out of line on a host:
+ * the usual command then saves no registers (an MCU keeps one copy of
+ * command_now). */
+static XGO_OWN_FRAME void command_decoding(xgo_motion_t *m, const xgo_regs_t *r, xgo_gait_command_t *cmd)
+{
+    decode_now(m, r);
+    command_now(m, r, cmd);
+}
+#endif
+
+void xgo_motion_gait_command(xgo_motion_t *m, const xgo_regs_t *r, xgo_gait_command_t *cmd)
+{
+#if XGO_CORE_DIV64_NATIVE
+    if (!m->decoded.valid) {
+        command_decoding(m, r, cmd);
+        return;
+    }
+#else
+    decode_registers(m, r);
+#endif
+    command_now(m, r, cmd);
 }
 
 /* Feet and pose for a running action (255, the reset, stands for 1 s): the

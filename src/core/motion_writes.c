@@ -168,8 +168,10 @@ static void take_debug_writes(xgo_motion_t *m, xgo_regs_t *r)
     }
 }
 
-/* Perform mode: the next action of the cycle once the last one ended. */
-static void next_performance(xgo_motion_t *m)
+/* Perform mode: the next action of the cycle once the last one ended. Out
+ * of line (an MCU's -Os keeps it so anyway): what a start needs is not
+ * saved on the tick's usual path, which only calls it. */
+static XGO_OWN_FRAME void next_performance(xgo_motion_t *m)
 {
     if (m->perform && m->action_id == 0 && !m->calibration) {
         m->perform_last = xgo_action_next_in_cycle(m->perform_last);
@@ -248,9 +250,21 @@ static int ends_a_turn(const xgo_regs_t *r)
     return any;
 }
 
+/* Something was written: every kind of write in turn. Out of line: the
+ * usual tick (nothing written) then saves none of the registers it needs. */
+static XGO_OWN_FRAME void take_all_writes(xgo_motion_t *m, xgo_regs_t *r)
+{
+    const int cancel = ends_a_turn(r);
+    take_group_writes(m, r);
+    take_debug_writes(m, r);
+    if (take_action_writes(m, r)) {
+        reset_all(m, r);
+    }
+    take_heading_writes(m, r, cancel);
+}
+
 XGO_OWN_FRAME void xgo_motion_take_writes(xgo_motion_t *m, xgo_regs_t *r)
 {
-    int cancel;
     if (!xgo_regs_take_any_written(r)) {
         /* Nothing written since the last pass, which took every flag this
          * file looks at: only what depends on the state alone (about 600
@@ -259,11 +273,5 @@ XGO_OWN_FRAME void xgo_motion_take_writes(xgo_motion_t *m, xgo_regs_t *r)
         end_turn_outside_whole_unit(m, 0);
         return;
     }
-    cancel = ends_a_turn(r);
-    take_group_writes(m, r);
-    take_debug_writes(m, r);
-    if (take_action_writes(m, r)) {
-        reset_all(m, r);
-    }
-    take_heading_writes(m, r, cancel);
+    take_all_writes(m, r);
 }

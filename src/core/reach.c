@@ -9,6 +9,11 @@
 #include "kinematics.h"
 #include "wide.h" /* XGO_CORE_DIV64_NATIVE: a 64-bit host */
 
+/* A 64-bit host hands out the pose of an ended search under unchanged
+ * keys, the usual tick, without saving registers (reach_held); the plain
+ * tick out of line. An MCU the plain way, inline. */
+#define REACH_HELD_FIRST XGO_CORE_DIV64_NATIVE
+
 #define SCALE_ONE 8        /* the whole deviation from the standing pose */
 #define STEP_START_UM 8000 /* the descent's first probes */
 #define STEP_MIN_UM 1000   /* and its last */
@@ -318,10 +323,39 @@ static int same_stroke(const xgo_reach_t *s, const xgo_vec3_t *stroke)
 #endif
 }
 
-int xgo_reach_tick(xgo_reach_t *s, const xgo_profile_t *p, const xgo_body_pose_t *now,
-                   const xgo_body_pose_t *base, const xgo_body_pose_t *spread,
-                   const xgo_vec3_t stance[XGO_LEG_COUNT], const xgo_vec3_t *stroke,
-                   xgo_body_pose_t *out)
+#if REACH_HELD_FIRST
+/* The usual tick: a search ended (whole deviation, scale 8) for keys equal
+ * to these: out = held = now shifted by found (transform), returns 1 when
+ * that is not now. Else 0, nothing touched. */
+static int reach_held(xgo_reach_t *s, const xgo_body_pose_t *now, const xgo_body_pose_t *base,
+                      const xgo_body_pose_t *spread, const xgo_vec3_t *stroke, xgo_body_pose_t *out,
+                      int *moved)
+{
+    if (!s->valid || s->searching || s->scale != SCALE_ONE || !same_stroke(s, stroke) ||
+        !same_pose(base, &s->key) || !same_pose(spread, &s->spread)) {
+        return 0;
+    }
+    /* transform at the whole deviation, written out (no call) */
+    s->held = *now;
+    s->held.x_um += s->found.x;
+    s->held.y_um += s->found.y;
+    s->held.z_um += s->found.z;
+    *out = s->held;
+    *moved = (s->found.x | s->found.y | s->found.z) != 0; /* out differs from now exactly then */
+    return 1;
+}
+#endif
+
+/* xgo_reach_tick the plain way (a host: off its usual tick, out of line;
+ * an MCU: the whole of it). */
+#if REACH_HELD_FIRST
+#define PLAIN_TICK static XGO_OWN_FRAME int
+#else
+#define PLAIN_TICK XGO_ALWAYS_INLINE int
+#endif
+PLAIN_TICK reach_tick(xgo_reach_t *s, const xgo_profile_t *p, const xgo_body_pose_t *now,
+                      const xgo_body_pose_t *base, const xgo_body_pose_t *spread,
+                      const xgo_vec3_t stance[XGO_LEG_COUNT], const xgo_vec3_t *stroke, xgo_body_pose_t *out)
 {
     if (!s->valid || !same_stroke(s, stroke) || !same_pose(base, &s->key) ||
         !same_pose(spread, &s->spread)) {
@@ -345,4 +379,18 @@ int xgo_reach_tick(xgo_reach_t *s, const xgo_profile_t *p, const xgo_body_pose_t
     } /* else meanwhile: the last pose handed out, which the legs held */
     *out = s->held;
     return !same_pose(out, now);
+}
+
+int xgo_reach_tick(xgo_reach_t *s, const xgo_profile_t *p, const xgo_body_pose_t *now,
+                   const xgo_body_pose_t *base, const xgo_body_pose_t *spread,
+                   const xgo_vec3_t stance[XGO_LEG_COUNT], const xgo_vec3_t *stroke,
+                   xgo_body_pose_t *out)
+{
+#if REACH_HELD_FIRST
+    int moved;
+    if (reach_held(s, now, base, spread, stroke, out, &moved)) {
+        return moved;
+    }
+#endif
+    return reach_tick(s, p, now, base, spread, stance, stroke, out);
 }
