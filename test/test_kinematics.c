@@ -976,6 +976,66 @@ static uint64_t fold_ik(uint64_t digest, uint32_t v)
     return (digest ^ v) * 0x100000001B3ull;
 }
 
+/* Far targets are halved until every coordinate is within 1 m (2^20 um):
+ * the leg IK's test of that (on a 64-bit host first all three at once)
+ * at the limit and either side of it, in each coordinate and sign. With
+ * links of 0.6 m, where a halving changes the answer (with the Mini's a
+ * target 1 m away and one 0.5 m away in about the same direction project
+ * to the same joint angles), checked two ways: beyond the limit the IK of
+ * the target equals that of the target halved as the rule says (then
+ * within, not halved again); at the limit itself, not halved, the joint
+ * angles are within a few mdeg of the target's 1 um nearer. */
+static void test_ik_far_limit_edges(void)
+{
+    static const int32_t edge[] = {1 << 20, (1 << 20) + 1, (1 << 20) + 2, (1 << 21) + 1};
+    uint64_t seed = 0xFA11FA11ULL;
+    xgo_profile_t big = *xgo_profile_mini();
+    unsigned n;
+    big.thigh_um = 600000;
+    big.shank_um = 600000;
+    for (n = 0; n < 4000u; ++n) {
+        const xgo_leg_t leg = (xgo_leg_t)(n % XGO_LEG_COUNT);
+        const unsigned axis = (n / 4u) % 3u, which = (n / 12u) % 4u;
+        const int32_t sign = ((n / 48u) & 1u) ? -1 : 1;
+        int32_t v[3], w[3], q[XGO_JOINT_COUNT], qr[XGO_JOINT_COUNT];
+        xgo_vec3_t foot, ref;
+        int i, r, rr;
+        for (i = 0; i < 3; ++i) {
+            v[i] = (int32_t)(xgo_test_xorshift64(&seed) % 400001u) - 200000;
+        }
+        v[axis] = sign * edge[which];
+        for (i = 0; i < 3; ++i) {
+            w[i] = v[i];
+        }
+        if (which == 0u) { /* at the limit: the target 1 um nearer */
+            w[axis] -= sign;
+        } else {
+            while (w[0] > (1 << 20) || w[0] < -(1 << 20) || w[1] > (1 << 20) || w[1] < -(1 << 20) ||
+                   w[2] > (1 << 20) || w[2] < -(1 << 20)) {
+                for (i = 0; i < 3; ++i) {
+                    w[i] /= 2;
+                }
+            }
+        }
+        foot.x = v[0];
+        foot.y = v[1];
+        foot.z = v[2];
+        ref.x = w[0];
+        ref.y = w[1];
+        ref.z = w[2];
+        r = xgo_leg_ik(&big, leg, &foot, q);
+        rr = xgo_leg_ik(&big, leg, &ref, qr);
+        if (which == 0u) {
+            for (i = 0; i < XGO_JOINT_COUNT; ++i) {
+                TEST_ASSERT_INT32_WITHIN(5, qr[i], q[i]);
+            }
+        } else {
+            TEST_ASSERT_EQUAL_INT(rr, r);
+            TEST_ASSERT_EQUAL_INT32_ARRAY(qr, q, XGO_JOINT_COUNT);
+        }
+    }
+}
+
 static void test_ik_same_bits_as_before(void)
 {
     xgo_profile_t other = *xgo_profile_mini();
@@ -1120,5 +1180,6 @@ int main(void)
     RUN_TEST(test_byte_codes_match_the_vendor_library);
     RUN_TEST(test_twelve_register_blocks);
     RUN_TEST(test_ik_same_bits_as_before);
+    RUN_TEST(test_ik_far_limit_edges);
     return UNITY_END();
 }

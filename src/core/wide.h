@@ -140,8 +140,8 @@ XGO_ALWAYS_INLINE uint32_t xgo_round_shr64(uint64_t v, unsigned k)
         return (hi >> (k - 32u)) + (k == 32u ? lo >> 31 : (hi >> (k - 33u)) & 1u);
     }
     return ((hi << (32u - k)) | (lo >> k)) + ((lo >> (k - 1u)) & 1u);
-#else
-    return (uint32_t)((v + ((uint64_t)1 << (k - 1u))) >> k);
+#else /* floor((floor(v / 2^(k-1)) + 1) / 2), the same: two shifts and an add, no constant */
+    return (uint32_t)(((v >> (k - 1u)) + 1u) >> 1);
 #endif
 }
 
