@@ -352,14 +352,16 @@ HOST_INLINE int planar_ik(planar_t *pl, int32_t x, int32_t h, leg_solution_t *s)
     const int32_t dn = pl->dn;
     int32_t nn;
     uint32_t cn;
-    if (n > d || n < -d) {
+    if ((uint64_t)n + (uint64_t)d > 2u * (uint64_t)d) { /* |n| > d: n + d outside [0, 2d] (d < 2^62) */
         planar_project(pl, x, h, &s->g, &s->t2);
         return 1;
     }
     /* sin g = n / d, cos g = sqrt((d - n)(d + n)) / d; n and d scaled to
      * 30 bits so the product fits 64 bits (relative precision 2^-30). */
     nn = xgo_shr64_to32(n, pl->d_shift);
-    nn = nn > dn ? dn : (nn < -dn ? -dn : nn);
+    /* n <= d gives nn <= dn (both floors of a shift); n >= -d only nn >=
+     * -dn - 1 (the floor of a negative value), so only that side clamps */
+    nn = nn < -dn ? -dn : nn;
     cn = sqrt64_round_near(xgo_umul_wide((uint32_t)(dn - nn), (uint32_t)(dn + nn))); /* < 2^30 */
     s->g = ik_atan2_len30(nn, (int32_t)cn); /* |(nn, cn)| = dn in [2^29, 2^30) */
     /* t2 = u-angle of the foot (x, h) minus the foot's angle past the thigh,
