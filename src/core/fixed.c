@@ -353,8 +353,10 @@ void xgo_sincos(xgo_bam_t a, xgo_q30_t *sin_out, xgo_q30_t *cos_out)
     /* sin d terms: Q30 * Q34 = Q64 -> Q30 */
     const int32_t c_s = mul_q34_round(c0, sd);
     const int32_t s_s = mul_q34_round(s0, sd);
-    const int32_t s = clamp_unit(s0 + c_s - s_h);
-    const int32_t c = clamp_unit(c0 - s_s - c_h);
+    /* within [0, 1] without a clamp: checked for every position r in the
+     * quadrant, both forms of mul_q34_round (a throwaway harness) */
+    const int32_t s = s0 + c_s - s_h;
+    const int32_t c = c0 - s_s - c_h;
     int32_t so, co;
     switch (quadrant) {
     case 0u:

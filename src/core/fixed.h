@@ -280,7 +280,7 @@ int32_t xgo_wrap_mdeg(int32_t mdeg);
 
 /* ------------------------------------------------------------ trigonometry */
 
-/* sin and cos of a binary angle, Q30, clamped to [-1, 1]. Exact at 0, 90,
+/* sin and cos of a binary angle, Q30, within [-1, 1]. Exact at 0, 90,
  * 180, 270 degrees. Measured max error over all angles: 2.82 LSB of Q30
  * (2.6e-9); asserted bound 3.5 LSB. */
 void xgo_sincos(xgo_bam_t a, xgo_q30_t *sin_out, xgo_q30_t *cos_out);
