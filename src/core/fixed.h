@@ -417,6 +417,8 @@ XGO_FIXED_HOT uint32_t newton_quotient(uint32_t n, uint32_t y, uint32_t m)
     return n / y;
 #endif
 }
+
+/* xgo_sqrt64_near */
 XGO_ALWAYS_INLINE uint32_t xgo_sqrt64_near_inline(uint64_t x)
 {
     uint32_t hi = (uint32_t)(x >> 32), lo, y0, rem, y;
@@ -437,6 +439,7 @@ XGO_ALWAYS_INLINE uint32_t xgo_sqrt64_near_inline(uint64_t x)
     y = (y0 << 16) + (newton_quotient((rem << 13) + (lo >> 19), y0, hi) << 2);
     return (y < (y0 << 16) ? 0xFFFFFFFFu : y) >> (s / 2u);
 }
+
 /* ---- atan2 */
 
 /* atan(i / 32) in BAM, i = 0..32 (0 .. 45 degrees). */
@@ -664,6 +667,8 @@ XGO_FIXED_HOT uint32_t abs_u32(int32_t v)
 {
     return v < 0 ? 0u - (uint32_t)v : (uint32_t)v;
 }
+
+/* xgo_atan2_len30 */
 XGO_ALWAYS_INLINE xgo_bam_t xgo_atan2_len30_inline(int32_t y, int32_t x)
 {
     const uint32_t ux = abs_u32(x), uy = abs_u32(y);
@@ -677,6 +682,7 @@ XGO_FIXED_HOT uint64_t abs_u64(int64_t v)
     return v < 0 ? 0u - (uint64_t)v : (uint64_t)v;
 }
 
+/* xgo_atan2_64 */
 XGO_ALWAYS_INLINE xgo_bam_t xgo_atan2_64_inline(int64_t y, int64_t x)
 {
     /* the signs kept apart and the pair ordered in place (fewer live

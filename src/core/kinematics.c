@@ -852,6 +852,16 @@ void xgo_body_ik(const xgo_profile_t *p, const xgo_body_pose_t *pose,
     xgo_body_ik_rotated(p, pose, rot, feet_machine_um, feet_leg_um);
 }
 
+/* A foot's offset from the body centre in the body IK: on a 64-bit host
+ * the 64-bit difference as it is (its products take it as it is, and
+ * nothing is cut to 32 bits when it is near: tick -7); elsewhere 32
+ * bits. */
+#if XGO_CORE_DIV64_NATIVE
+typedef int64_t um_diff_t;
+#else
+typedef int32_t um_diff_t;
+#endif
+
 /* round(sum of q[i] * v[i] / 2^18) for three Q18 entries |q| <= 2^18 (the
  * rotation's Q30 entries cut to Q18, rot_q18) and |v| < 2^22 (4 m): the
  * sum S = sum q * v (< 2^42) is exact, its rounding to um the only one.
@@ -862,7 +872,7 @@ void xgo_body_ik(const xgo_profile_t *p, const xgo_body_pose_t *pose,
  * rq * vl < 2^29, three of each fit; elsewhere S is three 64-bit products.
  * Both are exact: the same result everywhere. Inline: twelve a tick in
  * the body IK, where a call cost a third of it on the M0. */
-XGO_ALWAYS_INLINE int32_t dot3_q18(int32_t q0, int32_t q1, int32_t q2, int32_t v0, int32_t v1, int32_t v2)
+XGO_ALWAYS_INLINE int32_t dot3_q18(int32_t q0, int32_t q1, int32_t q2, um_diff_t v0, um_diff_t v1, um_diff_t v2)
 {
 #if XGO_CORE_NARROW_CPU
     const int32_t hi = q0 * (v0 >> 11) + q1 * (v1 >> 11) + q2 * (v2 >> 11);
@@ -889,13 +899,11 @@ static int32_t dot3_q18_cold(int32_t q0, int32_t q1, int32_t q2, int32_t v0, int
  * near); no 64-bit subtractions and compares, and a value the compiler
  * knows is 32 bits (from a 64-bit difference GCC made the Cortex-M3's
  * products below 64 x 64 bits). The same answer either way. */
-XGO_ALWAYS_INLINE int near_diff(int32_t a, int32_t b, int32_t *d)
+XGO_ALWAYS_INLINE int near_diff(int32_t a, int32_t b, um_diff_t *d)
 {
 #if XGO_CORE_DIV64_NATIVE /* a 64-bit host: the plain difference is cheaper */
-    const int64_t v = (int64_t)a - b;
-    const int near = v <= NEAR_LIMIT_UM && v >= -NEAR_LIMIT_UM;
-    *d = near ? (int32_t)v : 0;
-    return near;
+    *d = (int64_t)a - b;
+    return *d <= NEAR_LIMIT_UM && *d >= -NEAR_LIMIT_UM;
 #else
     const uint32_t ua = (uint32_t)a, ub = (uint32_t)b, r = ua - ub;
     *d = r <= (uint32_t)INT32_MAX ? (int32_t)r : -(int32_t)~r - 1; /* two's complement view */
@@ -916,7 +924,7 @@ XGO_ALWAYS_INLINE int small_um(int32_t v)
  * M0 -42, M3 -92); a 64-bit host checks its plain differences as fast.
  * The same answer and differences either way. */
 XGO_ALWAYS_INLINE int near_foot(const xgo_vec3_t *f, int32_t px, int32_t py, int32_t pz, int pose_small,
-                                int32_t *x, int32_t *y, int32_t *z)
+                                um_diff_t *x, um_diff_t *y, um_diff_t *z)
 {
 #if !XGO_CORE_DIV64_NATIVE
     if (pose_small & small_um(f->x) & small_um(f->y) & small_um(f->z)) {
@@ -993,7 +1001,8 @@ void xgo_body_ik_rotated(const xgo_profile_t *p, const xgo_body_pose_t *pose,
          * axes (R^T v) and the leg frame (origin at the thigh joint, z down) */
         const xgo_vec3_t *f = &feet_machine_um[leg];
         xgo_vec3_t *out = &feet_leg_um[leg];
-        int32_t x, y, z, ox, oy;
+        um_diff_t x, y, z;
+        int32_t ox, oy;
         leg_origin_of(leg, ax, ay, &ox, &oy);
         if (near_foot(f, px, py, pz, pose_small, &x, &y, &z)) { /* every value below 2^24: no saturation */
             out->x = dot3_q18(q[0], q[3], q[6], x, y, z) - ox;
