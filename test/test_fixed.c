@@ -866,10 +866,11 @@ static void test_sincos_same_bits_as_before(void)
     TEST_ASSERT_TRUE(digest == SINCOS_DIGEST);
 }
 
-/* The inline bodies (fixed.h, XGO_FIXED_INLINE: the leg IK's on a 64-bit
- * host) give the out-of-line functions' values, the narrow atan2_64 case
- * (both below 2^32, handed to the function) included: random arguments of
- * every bit length and sign, and the len30 domain's vectors. */
+/* The inline bodies (fixed.h, XGO_FIXED_INLINE: the kinematics' on a
+ * 64-bit host) give the out-of-line functions' values, the narrow
+ * atan2_64 case (both below 2^32, handed to the function) included:
+ * random arguments of every bit length and sign, the len30 domain's
+ * vectors, random angles. */
 static void test_inline_bodies_are_the_functions(void)
 {
     uint64_t state = 0x0DDBA11CAFEF00Dull;
@@ -885,6 +886,13 @@ static void test_inline_bodies_are_the_functions(void)
         const int32_t ly = (int32_t)(a & 0x7FFFFFFFu) - (1 << 30), lx = (int32_t)(c & 0x7FFFFFFFu) - (1 << 30);
         TEST_ASSERT_EQUAL_UINT32(xgo_sqrt64_near((uint64_t)x), xgo_sqrt64_near_inline((uint64_t)x));
         TEST_ASSERT_EQUAL_UINT32(xgo_atan2_64(y, x), xgo_atan2_64_inline(y, x));
+        {
+            xgo_q30_t s, c, si, ci;
+            xgo_sincos((xgo_bam_t)b, &s, &c);
+            xgo_sincos_inline((xgo_bam_t)b, &si, &ci);
+            TEST_ASSERT_EQUAL_INT32(s, si);
+            TEST_ASSERT_EQUAL_INT32(c, ci);
+        }
         const uint64_t len2 = (uint64_t)((int64_t)ly * ly) + (uint64_t)((int64_t)lx * lx);
         if (len2 >= (1ull << 58) && len2 <= (1ull << 60)) { /* length in [2^29, 2^30] */
             TEST_ASSERT_EQUAL_UINT32(xgo_atan2_len30(ly, lx), xgo_atan2_len30_inline(ly, lx));

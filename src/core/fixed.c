@@ -244,150 +244,18 @@ int32_t xgo_wrap_mdeg(int32_t mdeg)
 
 /* ------------------------------------------------------------ sin / cos */
 
-/* sin(k * pi / 256) in Q30, k = 0..128: a quarter wave at 128 intervals. */
-static const int32_t sin_tab[129] = {
-    0, 13176464, 26350943, 39521455, 52686014, 65842639,
-    78989349, 92124163, 105245103, 118350194, 131437462, 144504935,
-    157550647, 170572633, 183568930, 196537583, 209476638, 222384147,
-    235258165, 248096755, 260897982, 273659918, 286380643, 299058239,
-    311690799, 324276419, 336813204, 349299266, 361732726, 374111709,
-    386434353, 398698801, 410903207, 423045732, 435124548, 447137835,
-    459083786, 470960600, 482766489, 494499676, 506158392, 517740883,
-    529245404, 540670223, 552013618, 563273883, 574449320, 585538248,
-    596538995, 607449906, 618269338, 628995660, 639627258, 650162530,
-    660599890, 670937767, 681174602, 691308855, 701339000, 711263525,
-    721080937, 730789757, 740388522, 749875788, 759250125, 768510122,
-    777654384, 786681534, 795590213, 804379079, 813046808, 821592095,
-    830013654, 838310216, 846480531, 854523370, 862437520, 870221790,
-    877875009, 885396022, 892783698, 900036924, 907154608, 914135678,
-    920979082, 927683790, 934248793, 940673101, 946955747, 953095785,
-    959092290, 964944360, 970651112, 976211688, 981625251, 986890984,
-    992008094, 996975812, 1001793390, 1006460100, 1010975242, 1015338134,
-    1019548121, 1023604567, 1027506862, 1031254418, 1034846671, 1038283080,
-    1041563127, 1044686319, 1047652185, 1050460278, 1053110176, 1055601479,
-    1057933813, 1060106826, 1062120190, 1063973603, 1065666786, 1067199483,
-    1068571464, 1069782521, 1070832474, 1071721163, 1072448455, 1073014240,
-    1073418433, 1073660973, 1073741824,
-};
+/* sin_tab, the offset's terms and xgo_sincos's body are in fixed.h's
+ * bodies part. */
 
-static int32_t clamp_unit(int32_t v)
-{
-    if (v > XGO_Q30_ONE) {
-        return XGO_Q30_ONE;
-    }
-    if (v < -XGO_Q30_ONE) {
-        return -XGO_Q30_ONE;
-    }
-    return v;
-}
-
-/* 8 pi - 25 in Q19, rounded: with 25 it turns a BAM offset into radians in
- * Q34 (d * 2 pi / 2^32 * 2^34 = d * 8 pi). */
-#define EIGHT_PI_FRAC_Q19 69595
-
-/* round(v / 3) for 0 <= v < 2^15 - 1: a multiply by ceil(2^16 / 3) = 21846
- * and a shift is exact there, and needs no division (Cortex-M0). */
-static int32_t div3_small(int32_t v)
-{
-    return (int32_t)(((uint32_t)v + 1u) * 21846u >> 16);
-}
-
-/* round(t * v / 2^34), ties up, for a table value 0 <= t <= 2^30 and
- * |v| < 2^27 (sincos's sin d: below 2^26.7). On a Cortex-M0 from 15- and
- * 14-bit pieces, t = th 2^15 + tl and v = vh 2^14 + vl (0 <= tl, vl):
- * t v = A 2^29 + B 2^14 + C with A = th vh (|A| <= 2^28), B = 2 th vl +
- * tl vh (below 2^30 + 2^28) and C = tl vl (< 2^29), each one MULS in 32
- * bits, the floors nested exactly (A split at bit 5 so nothing overflows):
- * 4 multiplies and no carries instead of a wide product. Elsewhere one
- * multiply. The same value (checked equal on 2 * 10^9 random pairs and
- * every v within +-300,000 for t = m 2^j: the ties; a throwaway harness). */
-XGO_ALWAYS_INLINE int32_t mul_q34_round(int32_t t, int32_t v)
-{
-#if XGO_CORE_NARROW_CPU
-    const int32_t th = t >> 15, tl = t & 0x7FFF, vh = v >> 14, vl = v & 0x3FFF;
-    const int32_t a = th * vh;
-    const int32_t d = 2 * th * vl + tl * vh + (1 << 19) + ((tl * vl) >> 14); /* B + 2^19 + floor(C / 2^14) */
-    return (a >> 5) + ((((a & 31) << 15) + d) >> 20);
-#else
-    return (int32_t)((xgo_mul_wide(t, v) + ((int64_t)1 << 33)) >> 34);
-#endif
-}
-
-/* The offset d from a table node (|d| <= 2^22 BAM) as sin d in Q34 (d in
- * radians less d^3/6) and 1 - cos d = d^2/2 in Q30: xgo_sincos's small
- * terms, shared with xgo_sincos_near0. */
-XGO_ALWAYS_INLINE void offset_terms(int32_t d, int32_t *sd_out, int32_t *half_d2_out)
-{
-    /* d in radians, Q34: 25 d + d (8 pi - 25), the fraction in two 16-bit
-     * pieces of d (d = 256 dh + dl); |dr| <= pi/512 * 2^34 < 2^26.7 */
-    const int32_t dh = d >> 8, dl = d & 0xFF;
-    const int32_t dr = 25 * d + ((dh * EIGHT_PI_FRAC_Q19 + (1 << 10)) >> 11) +
-                       ((dl * EIGHT_PI_FRAC_Q19) >> 19);
-    /* d^2/2 in Q30 (<= 2^14.3) from |dr| in Q23 (< 2^15.7: the square fits 32 bits unsigned) */
-    const uint32_t u = ((uint32_t)(dr < 0 ? -dr : dr) + (1u << 10)) >> 11;
-    const int32_t half_d2 = (int32_t)((u * u + (1u << 16)) >> 17);
-    /* d^3/6 = d * (d^2/2) / 3 in Q34: (dr in Q22) * half_d2 -> Q52 */
-    const int32_t d3_2 = ((dr >> 12) * half_d2 + (1 << 17)) >> 18;
-    *sd_out = dr - (d3_2 < 0 ? -div3_small(-d3_2) : div3_small(d3_2)); /* Q34 */
-    *half_d2_out = half_d2;
-}
-
-/* The nearest table node and the angle-addition formulas:
- *   sin(a + d) = s0 cos d + c0 sin d,  cos(a + d) = c0 cos d - s0 sin d,
- * sin d = d - d^3/6 (next term < 1e-13), 1 - cos d = d^2/2 (next term
- * 6e-11). Only the two products with sin d need 32 x 32 -> 64 bits; the
- * small terms are 16 x 16-bit products (one MULS each on a Cortex-M0). */
 void xgo_sincos(xgo_bam_t a, xgo_q30_t *sin_out, xgo_q30_t *cos_out)
 {
-    const uint32_t quadrant = a >> 30;
-    const uint32_t r = a & 0x3FFFFFFFu;        /* position in the quadrant */
-    const uint32_t k = (r + (1u << 22)) >> 23; /* nearest table node, 0..128 */
-    const int32_t d = (int32_t)r - (int32_t)(k << 23); /* |d| <= 2^22 BAM */
-    int32_t sd, half_d2, s0, c0;
-    offset_terms(d, &sd, &half_d2);
-    s0 = sin_tab[k];
-    c0 = sin_tab[128u - k];
-    /* 1 - cos d terms: Q16 table value times half_d2, Q46 -> Q30 */
-    const int32_t s_h = (int32_t)(((uint32_t)s0 >> 14) * (uint32_t)half_d2 >> 16);
-    const int32_t c_h = (int32_t)(((uint32_t)c0 >> 14) * (uint32_t)half_d2 >> 16);
-    /* sin d terms: Q30 * Q34 = Q64 -> Q30 */
-    const int32_t c_s = mul_q34_round(c0, sd);
-    const int32_t s_s = mul_q34_round(s0, sd);
-    /* within [0, 1] without a clamp: checked for every position r in the
-     * quadrant, both forms of mul_q34_round (a throwaway harness) */
-    const int32_t s = s0 + c_s - s_h;
-    const int32_t c = c0 - s_s - c_h;
-    int32_t so, co;
-    switch (quadrant) {
-    case 0u:
-        so = s;
-        co = c;
-        break;
-    case 1u: /* sin(90 + x) = cos x, cos(90 + x) = -sin x */
-        so = c;
-        co = -s;
-        break;
-    case 2u:
-        so = -s;
-        co = -c;
-        break;
-    default:
-        so = -c;
-        co = s;
-        break;
-    }
-    if (sin_out != 0) {
-        *sin_out = so;
-    }
-    if (cos_out != 0) {
-        *cos_out = co;
-    }
+    xgo_sincos_inline(a, sin_out, cos_out);
 }
 
 /* Near the node 0 (from -2^22 up to 2^22 BAM, signed: node 0 of the first
  * quadrant or node 128 of the fourth) the table's values are 0 and 1, so
  * xgo_sincos's products with them are shifts: sin a = round(sd / 16),
- * cos a = 1 - d^2/2 (neither can need its clamp), the same values. */
+ * cos a = 1 - d^2/2 (no clamp, as there), the same values. */
 void xgo_sincos_near0(xgo_bam_t a, xgo_q30_t *sin_out, xgo_q30_t *cos_out)
 {
     const int32_t d = xgo_bam_signed(a);
@@ -436,6 +304,17 @@ xgo_bam_t xgo_atan2_64(int64_t y, int64_t x)
 }
 
 /* ------------------------------------------------------------ asin / acos */
+
+static int32_t clamp_unit(int32_t v)
+{
+    if (v > XGO_Q30_ONE) {
+        return XGO_Q30_ONE;
+    }
+    if (v < -XGO_Q30_ONE) {
+        return -XGO_Q30_ONE;
+    }
+    return v;
+}
 
 /* sqrt(1 - x^2) in Q30 for x in [-1, 1] (Q30), from (1 - x)(1 + x) so there
  * is no cancellation near |x| = 1. */

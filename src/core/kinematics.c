@@ -109,7 +109,17 @@ static xgo_bam_t clamp_arc(xgo_bam_t a, xgo_bam_t lo, uint32_t width)
     return a;
 }
 
-/* The leg IK's square root and arctangents: inline on a 64-bit host. */
+/* The kinematics' sine and cosine, the leg IK's square root and
+ * arctangents: inline on a 64-bit host. */
+XGO_ALWAYS_INLINE void ik_sincos(xgo_bam_t a, xgo_q30_t *s, xgo_q30_t *c)
+{
+#if XGO_CORE_DIV64_NATIVE
+    xgo_sincos_inline(a, s, c);
+#else
+    xgo_sincos(a, s, c);
+#endif
+}
+
 XGO_ALWAYS_INLINE uint32_t ik_sqrt64_near(uint64_t x)
 {
 #if XGO_CORE_DIV64_NATIVE
@@ -430,9 +440,9 @@ static void fk_bam(const xgo_profile_t *p, int side_y, xgo_bam_t phi, xgo_bam_t 
 #if !XGO_CORE_NARROW_CPU
     int64_t x30, wp34, z34;
 #endif
-    xgo_sincos(t2, &s2, &c2);
-    xgo_sincos(t2 + g, &s12, &c12);
-    xgo_sincos(phi, &sp, &cp);
+    ik_sincos(t2, &s2, &c2);
+    ik_sincos(t2 + g, &s12, &c12);
+    ik_sincos(phi, &sp, &cp);
     /* in the leg plane: x = -L1 sin t2 + L2 cos(t2 + g), h = L1 cos t2 + L2 sin(t2 + g) */
 #if XGO_CORE_NARROW_CPU
     foot_um->x = dot30(-l1, s2, l2, c12);
@@ -767,7 +777,7 @@ static void sincos_mdeg(int32_t mdeg, xgo_q30_t *s, xgo_q30_t *c)
         *s = 0;
         *c = XGO_Q30_ONE;
     } else {
-        xgo_sincos(xgo_mdeg_to_bam(mdeg), s, c);
+        ik_sincos(xgo_mdeg_to_bam(mdeg), s, c);
     }
 }
 
