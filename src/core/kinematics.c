@@ -232,13 +232,13 @@ XGO_OWN_FRAME static void planar_arc(planar_t *pl, int side)
     const int32_t gl = side ? pl->g_hi : pl->g_lo, tl = side ? pl->t_hi : pl->t_lo;
     xgo_q30_t sg, cg;
     int64_t fx, fh;
-    xgo_sincos((uint32_t)gl, &sg, &cg);
+    ik_sincos((uint32_t)gl, &sg, &cg);
     fx = round_shift(mul_cold(pl->l2, cg), 30); /* foot in the thigh frame */
     fh = pl->l1 + round_shift(mul_cold(pl->l2, sg), 30);
     pl->hip_r[side] = (int32_t)isqrt64_round((uint64_t)(fx * fx + fh * fh));
     pl->hip_a[side] = u_angle((int32_t)fx, (int32_t)fh); /* foot direction past the thigh */
     /* t2 fixed at a limit: foot on a circle about the knee */
-    xgo_sincos((uint32_t)tl, &sg, &cg);
+    ik_sincos((uint32_t)tl, &sg, &cg);
     pl->knee_x[side] = (int32_t)-round_shift(mul_cold(pl->l1, sg), 30);
     pl->knee_h[side] = (int32_t)round_shift(mul_cold(pl->l1, cg), 30);
 }
@@ -263,7 +263,7 @@ XGO_OWN_FRAME static void hip_candidate(const planar_t *pl, int side, int32_t x,
     const xgo_bam_t a = pl->hip_a[side];
     xgo_q30_t sp, cp;
     xgo_bam_t psi = clamp_arc(target, (uint32_t)pl->t_lo + a, (uint32_t)pl->t_hi - (uint32_t)pl->t_lo);
-    xgo_sincos(psi, &sp, &cp);
+    ik_sincos(psi, &sp, &cp);
     consider(best, -round_shift(mul_cold(r, sp), 30), round_shift(mul_cold(r, cp), 30), x, h,
              (uint32_t)(side ? pl->g_hi : pl->g_lo), psi - a);
 }
@@ -278,7 +278,7 @@ XGO_OWN_FRAME static void knee_candidate(const planar_t *pl, int side, int32_t x
     const xgo_bam_t b_lo = (uint32_t)tl + (uint32_t)pl->g_lo - XGO_BAM_90;
     const xgo_bam_t b = clamp_arc(u_angle(x - kx, h - kh), b_lo,
                                   (uint32_t)pl->g_hi - (uint32_t)pl->g_lo);
-    xgo_sincos(b, &sb, &cb);
+    ik_sincos(b, &sb, &cb);
     consider(best, kx - round_shift(mul_cold(pl->l2, sb), 30), kh + round_shift(mul_cold(pl->l2, cb), 30), x, h,
              b - (uint32_t)tl + XGO_BAM_90, (uint32_t)tl);
 }
@@ -491,7 +491,7 @@ HOST_INLINE void solve_branch(planar_t *pl, int32_t xq, int32_t wp, int32_t z, i
         xgo_q30_t sp, cp;
         s->q[XGO_JOINT_ABAD] = s->q[XGO_JOINT_ABAD] < ar->lo ? ar->lo : ar->hi;
         s->phi = xgo_mdeg_to_bam(s->q[XGO_JOINT_ABAD]);
-        xgo_sincos(s->phi, &sp, &cp);
+        ik_sincos(s->phi, &sp, &cp);
         h = (int32_t)round_shift(mul_cold(wp, sp) + mul_cold(z, cp), 30 - Q4_SHIFT);
         s->projected = 1;
     }
@@ -550,7 +550,7 @@ XGO_OWN_FRAME static int upper_may_win(const planar_t *pl, int side, const leg_s
     if (joint_in(pl, XGO_JOINT_ABAD, branch_phi(pl, wp, z, -h_abs), &q)) {
         return 1;
     }
-    xgo_sincos(xgo_mdeg_to_bam(q < ar->lo ? ar->lo : ar->hi), &sp, &cp);
+    ik_sincos(xgo_mdeg_to_bam(q < ar->lo ? ar->lo : ar->hi), &sp, &cp);
     off = (int32_t)round_shift(mul_cold(wp, cp) - mul_cold(z, sp), 30) - pl->p->abad_offset_um;
     off = (off < 0 ? -off : off) - 8; /* the margin: 2 um is enough */
     *miss2_below = miss2(pl->p, side, below, x_um, y_um, z);
