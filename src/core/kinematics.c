@@ -20,10 +20,10 @@
 #include "compiler.h"
 #include "wide.h" /* 32 x 32 -> 64 products without a libgcc call on a Cortex-M0 */
 
-/* On a 64-bit host the leg IK inlines its square roots and arctangents
- * (fixed.h's bodies: the same code as the out-of-line functions, so the
- * same values); elsewhere it calls them (flash, and the static stack
- * bound: docs/mcu.md). */
+/* On a 64-bit host the leg IK inlines its square roots, arctangents and
+ * sines (fixed.h's bodies: the same code as the out-of-line functions,
+ * so the same values); elsewhere it calls them (flash, and the static
+ * stack bound: docs/mcu.md). */
 #if XGO_CORE_DIV64_NATIVE
 #define XGO_FIXED_BODIES
 #define XGO_FIXED_INLINE
@@ -109,8 +109,8 @@ static xgo_bam_t clamp_arc(xgo_bam_t a, xgo_bam_t lo, uint32_t width)
     return a;
 }
 
-/* The kinematics' sine and cosine, the leg IK's square root and
- * arctangents: inline on a 64-bit host. */
+/* The leg IK's sines and cosines, square roots and arctangents: inline
+ * on a 64-bit host. */
 XGO_ALWAYS_INLINE void ik_sincos(xgo_bam_t a, xgo_q30_t *s, xgo_q30_t *c)
 {
 #if XGO_CORE_DIV64_NATIVE
@@ -440,9 +440,9 @@ static void fk_bam(const xgo_profile_t *p, int side_y, xgo_bam_t phi, xgo_bam_t 
 #if !XGO_CORE_NARROW_CPU
     int64_t x30, wp34, z34;
 #endif
-    ik_sincos(t2, &s2, &c2);
-    ik_sincos(t2 + g, &s12, &c12);
-    ik_sincos(phi, &sp, &cp);
+    xgo_sincos(t2, &s2, &c2);
+    xgo_sincos(t2 + g, &s12, &c12);
+    xgo_sincos(phi, &sp, &cp);
     /* in the leg plane: x = -L1 sin t2 + L2 cos(t2 + g), h = L1 cos t2 + L2 sin(t2 + g) */
 #if XGO_CORE_NARROW_CPU
     foot_um->x = dot30(-l1, s2, l2, c12);
@@ -777,7 +777,7 @@ static void sincos_mdeg(int32_t mdeg, xgo_q30_t *s, xgo_q30_t *c)
         *s = 0;
         *c = XGO_Q30_ONE;
     } else {
-        ik_sincos(xgo_mdeg_to_bam(mdeg), s, c);
+        xgo_sincos(xgo_mdeg_to_bam(mdeg), s, c);
     }
 }
 
