@@ -573,6 +573,70 @@ static void test_cross_product_is_the_wide_one(void)
     }
 }
 
+/* The fit's turn (xgo_odometry_turn: on a 64-bit host a small turn's
+ * atan2 inline) is xgo_atan2_64's, signed: at the inline form's edges (dot
+ * at 2^32 and either side, |cross| at dot and either side, cross 0 and
+ * INT64_MIN, either sign) and for 3,000,000 random pairs: any magnitudes,
+ * and the fit's own (dot of 33 to 62 bits, cross a small part of it, the
+ * ratio around the first table node's edge 1/64 too). */
+static int32_t atan2_64_signed(int64_t cross, int64_t dot)
+{
+    return cross == 0 ? 0 : xgo_bam_signed(xgo_atan2_64(cross, dot));
+}
+
+static void test_turn_is_xgo_atan2_64s(void)
+{
+    static const int64_t dot_edge[] = {((int64_t)1 << 32) - 1, (int64_t)1 << 32, ((int64_t)1 << 32) + 1,
+                                       ((int64_t)1 << 57) + 12345, INT64_MAX, 1, 0, -((int64_t)1 << 32),
+                                       -((int64_t)1 << 40), INT64_MIN};
+    uint64_t seed = 2026u;
+    unsigned i, j, k;
+    for (i = 0; i < 10u; i++) {
+        const int64_t d = dot_edge[i];
+        const int64_t mag = d < 0 ? (d == INT64_MIN ? INT64_MAX : -d) : d;
+        const int64_t cross_edge[] = {0, 1, -1, mag, -mag, mag - 1, -(mag - 1), mag / 64, -(mag / 64),
+                                      mag / 64 + 1, INT64_MIN, INT64_MAX};
+        for (j = 0; j < sizeof cross_edge / sizeof cross_edge[0]; j++) {
+            TEST_ASSERT_EQUAL_INT32(atan2_64_signed(cross_edge[j], d), xgo_odometry_turn(cross_edge[j], d));
+            if (mag < INT64_MAX) {
+                TEST_ASSERT_EQUAL_INT32(atan2_64_signed(cross_edge[j] == INT64_MIN ? 0 : cross_edge[j], mag + 1),
+                                        xgo_odometry_turn(cross_edge[j] == INT64_MIN ? 0 : cross_edge[j], mag + 1));
+            }
+        }
+    }
+    for (k = 0; k < 3000000u; k++) {
+        int64_t dot, cross;
+        uint64_t r[2];
+        for (j = 0; j < 2u; j++) {
+            seed = seed * 6364136223846793005u + 1442695040888963407u;
+            r[j] = seed;
+        }
+        switch (k % 4u) {
+        case 0u: /* any magnitudes and signs */
+            dot = (int64_t)r[0] >> (r[1] % 63u);
+            cross = (int64_t)r[1] >> ((r[0] >> 7) % 63u);
+            break;
+        case 1u: /* the fit's: dot of 33 to 62 bits, a small turn */
+            dot = (int64_t)((r[0] >> 2) >> (r[1] % 30u)) | ((int64_t)1 << 32);
+            cross = ((int64_t)r[1] >> 1) >> (63u - 33u + (r[0] % 30u));
+            break;
+        case 2u: /* the ratio around 1/64, the first node's edge */
+            dot = (int64_t)((r[0] >> 2) >> (r[1] % 30u)) | ((int64_t)1 << 32);
+            cross = dot / 64 + (int64_t)(r[1] % 2001u) - 1000;
+            cross = (r[1] >> 40) & 1u ? -cross : cross;
+            break;
+        default: /* |cross| around dot (the octant's other edge) */
+            dot = (int64_t)((r[0] >> 2) >> (r[1] % 30u)) | ((int64_t)1 << 32);
+            cross = dot + (int64_t)(r[1] % 2001u) - 1000;
+            cross = (r[1] >> 40) & 1u ? -cross : cross;
+            break;
+        }
+        if (xgo_odometry_turn(cross, dot) != atan2_64_signed(cross, dot)) {
+            TEST_FAIL_MESSAGE("xgo_odometry_turn differs from xgo_atan2_64");
+        }
+    }
+}
+
 /* Feet in the air need not be measured (odometry.h): an odometry given
  * only the planted feet (and some others), garbage for the rest, that
  * measures them when xgo_odometry_needs_all asks (and last tick's through
@@ -748,6 +812,7 @@ int main(void)
     RUN_TEST(test_board_write_takes_the_register_write_path_with_its_source);
     RUN_TEST(test_odometry_arithmetic_is_the_same_on_every_core);
     RUN_TEST(test_cross_product_is_the_wide_one);
+    RUN_TEST(test_turn_is_xgo_atan2_64s);
     RUN_TEST(test_feet_in_the_air_measured_only_when_needed);
     RUN_TEST(test_sensing_state_over_a_session_is_the_plain_paths);
     return UNITY_END();

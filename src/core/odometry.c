@@ -8,6 +8,13 @@
 
 #include "wide.h"
 
+#if XGO_CORE_DIV64_NATIVE && XGO_WITH_ODOMETRY
+/* the atan2 machinery inline for turn_of's usual case (fixed.h's bodies) */
+#define XGO_FIXED_BODIES
+#define XGO_FIXED_INLINE
+#include "fixed.h"
+#endif
+
 void xgo_odometry_init(xgo_odometry_t *o)
 {
     memset(o, 0, sizeof *o);
@@ -94,6 +101,34 @@ int64_t xgo_odometry_cross(int32_t bx, int32_t by, int32_t ax, int32_t ay)
     return cross_of(bx, by, ax, ay);
 }
 
+/* The turn of the fit, the signed angle of (dot, cross), as
+ * xgo_atan2_64 gives it. On a 64-bit host its usual case inline: a tick's
+ * turn is small and dot large (a planted pair's spread squared: above 2^32
+ * at every walking tick), so the vector is in the first or eighth octant
+ * with a larger component of 33 bits or more; there xgo_atan2_64 is the
+ * octant's arctangent of the two rounded to 25 bits, negated for a
+ * negative cross (atan_octant, fold with no swap and x > 0: the same
+ * steps, so the same value), without the call and its general case.
+ * Elsewhere (and for any other vector) the call. test_odometry compares it
+ * with xgo_atan2_64. */
+XGO_ALWAYS_INLINE int32_t turn_of(int64_t cross, int64_t dot)
+{
+#if XGO_CORE_DIV64_NATIVE
+    const uint64_t ay = cross < 0 ? 0u - (uint64_t)cross : (uint64_t)cross;
+    if (dot >= ((int64_t)1 << 32) && ay <= (uint64_t)dot) {
+        const unsigned k = 39u - xgo_clz32_nz((uint32_t)((uint64_t)dot >> 32));
+        const uint32_t a = atan_octant(xgo_round_shr64((uint64_t)dot, k), xgo_round_shr64(ay, k));
+        return cross < 0 ? -(int32_t)a : (int32_t)a;
+    }
+#endif
+    return (cross == 0) ? 0 : xgo_bam_signed(xgo_atan2_64(cross, dot));
+}
+
+int32_t xgo_odometry_turn(int64_t cross, int64_t dot)
+{
+    return turn_of(cross, dot);
+}
+
 typedef char xgo_odometry_four_legs_[XGO_LEG_COUNT == 4 ? 1 : -1];
 
 /* The lowest leg in a non-empty contact mask: a table lookup, not a chain
@@ -150,7 +185,7 @@ static void fit_motion(const xgo_odometry_t *o, const xgo_vec3_t feet_um[XGO_LEG
             }
         }
     }
-    *dyaw = (cross == 0) ? 0 : xgo_bam_signed(xgo_atan2_64(cross, dot));
+    *dyaw = turn_of(cross, dot);
     xgo_sincos_near0((xgo_bam_t)*dyaw, &s, &c); /* a tick's turn: small */
     /* n d = Sa - R Sb, in 1/256 um */
     {

@@ -73,6 +73,11 @@ void xgo_odometry_update_measured(xgo_odometry_t *o, const xgo_vec3_t feet_um[XG
  * a small change of a small a): exposed for test_odometry, which checks it
  * against the 64-bit products. */
 int64_t xgo_odometry_cross(int32_t bx, int32_t by, int32_t ax, int32_t ay);
+
+/* The fit's turn of (dot, cross) as a signed binary angle: that of
+ * xgo_atan2_64 (0 for cross == 0), with a 64-bit host's inline form for a
+ * small turn; exposed for test_odometry, which checks the two agree. */
+int32_t xgo_odometry_turn(int64_t cross, int64_t dot);
 #else
 static inline void xgo_odometry_update(xgo_odometry_t *o,
                                        const xgo_vec3_t feet_um[XGO_LEG_COUNT], uint8_t contact)
