@@ -12,6 +12,7 @@
 #include "motion_internal.h" /* xgo_motion_asked_pose */
 #include "unity.h"
 #include "xgo/board.h"
+#include "xgo/emulator.h"
 #include "xgo/profile.h"
 
 static xgo_board_t board;
@@ -646,6 +647,167 @@ static void test_the_asked_pose_is_each_axis_static_or_periodic(void)
     }
 }
 
+/* ---- the IMU registers 0x62..0x68, formed on read ----
+ * The board once stored the IMU's angles (bytes at 0x62..0x64, the angles
+ * themselves for the views) and the accelerometer and gyroscope (the block
+ * at 0x65) at power-up and at the end of every tick. imu_as_stored is that
+ * store, from the public observers (the model's outputs from its struct),
+ * encoded here in double; every read until the next tick must give exactly
+ * it: the flat bytes in any window, and the views a read starting at 0x62..
+ * 0x68 gets (float32 LE degrees from four bytes, the block, big-endian
+ * centidegrees). */
+static struct {
+    int32_t mdeg[3];
+    uint8_t byte[3];
+    int16_t accel[3], gyro[3];
+} imu_as_stored;
+
+static void store_imu(void)
+{
+    unsigned i;
+    xgo_board_imu_mdeg(&board, imu_as_stored.mdeg);
+    for (i = 0; i < 3; i++) {
+        /* 1 LSB = 1406.25 mdeg, half away from zero (never a tie: 8 m is
+         * even, 5625 (2k + 1) odd), clamped */
+        const double q = (double)imu_as_stored.mdeg[i] / 1406.25;
+        const double k = 128.0 + (q >= 0 ? floor(q + 0.5) : -floor(-q + 0.5));
+        imu_as_stored.byte[i] = (uint8_t)(k < 0 ? 0 : (k > 255 ? 255 : k));
+#if XGO_WITH_INERTIAL
+        imu_as_stored.accel[i] = board.motion.inertial.accel[i];
+        imu_as_stored.gyro[i] = board.motion.inertial.gyro[i];
+#else
+        imu_as_stored.accel[i] = imu_as_stored.gyro[i] = 0;
+#endif
+    }
+}
+
+static void put_le(uint8_t *out, uint32_t v, unsigned n)
+{
+    unsigned i;
+    for (i = 0; i < n; i++) {
+        out[i] = (uint8_t)(v >> (8u * i));
+    }
+}
+
+static uint32_t deg_float_bits(int32_t mdeg)
+{
+    const float f = (float)((double)mdeg / 1000.0);
+    uint32_t bits;
+    memcpy(&bits, &f, sizeof bits);
+    return bits;
+}
+
+/* The bytes a read of len at start gives: the image's, and at its start
+ * the view of that address, if any (xgo/regs.h). */
+static void imu_expected(const uint8_t image[XGO_REG_COUNT], unsigned start, unsigned len,
+                         uint8_t *want)
+{
+    uint8_t view[XGO_IMU_BLOCK_LEN];
+    unsigned i, vlen = 0;
+    memcpy(want, &image[start], len);
+    if (start >= XGO_REG_IMU_ROLL && start <= XGO_REG_IMU_YAW && len >= 4) {
+        put_le(view, deg_float_bits(imu_as_stored.mdeg[start - XGO_REG_IMU_ROLL]), 4);
+        vlen = 4;
+    } else if (start == XGO_REG_IMU_BLOCK) {
+        for (i = 0; i < 3; i++) {
+            put_le(&view[2 * i], (uint16_t)imu_as_stored.accel[i], 2);
+            put_le(&view[6 + 2 * i], (uint16_t)imu_as_stored.gyro[i], 2);
+            put_le(&view[12 + 4 * i], deg_float_bits(imu_as_stored.mdeg[i]), 4);
+        }
+        vlen = XGO_IMU_BLOCK_LEN;
+    } else if (start >= XGO_REG_IMU_ROLL16 && start <= XGO_REG_IMU_YAW16) {
+        const double c = (double)imu_as_stored.mdeg[start - XGO_REG_IMU_ROLL16] / 10.0;
+        const uint16_t v = (uint16_t)(int16_t)(c >= 0 ? floor(c + 0.5) : -floor(-c + 0.5));
+        view[0] = (uint8_t)(v >> 8);
+        view[1] = (uint8_t)v;
+        vlen = 2;
+    }
+    for (i = 0; i < len && i < vlen; i++) {
+        want[i] = view[i];
+    }
+}
+
+/* Every start from 0x50 to 0x80 and several lengths over the IMU's
+ * registers and past them: each read gives the bytes as stored and writes
+ * no byte past its end; and over the wire, the yaw's float and the block. */
+static void check_imu_reads(void)
+{
+    static const uint8_t lens[] = {1, 2, 3, 4, 5, 6, 8, 19, 24, 25, 40};
+    uint8_t image[XGO_REG_COUNT];
+    uint8_t buf[48], want[48];
+    unsigned start, k;
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_board_read(&board, 0x00, XGO_FRAME_MAX_DATA, image));
+    TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_board_read(&board, XGO_FRAME_MAX_DATA,
+                                                        XGO_REG_COUNT - XGO_FRAME_MAX_DATA,
+                                                        &image[XGO_FRAME_MAX_DATA]));
+    TEST_ASSERT_EQUAL_HEX8_ARRAY(imu_as_stored.byte, &image[XGO_REG_IMU_ROLL], 3);
+    for (start = 0x50; start <= 0x80; start++) {
+        for (k = 0; k < sizeof lens; k++) {
+            memset(buf, 0xA5, sizeof buf);
+            imu_expected(image, start, lens[k], want);
+            TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_board_read(&board, (uint8_t)start, lens[k], buf));
+            TEST_ASSERT_EQUAL_HEX8_ARRAY(want, buf, lens[k]);
+            TEST_ASSERT_EQUAL_HEX8(0xA5, buf[lens[k]]);
+        }
+    }
+    wire_read(XGO_REG_IMU_YAW, 4, buf);
+    imu_expected(image, XGO_REG_IMU_YAW, 4, want);
+    TEST_ASSERT_EQUAL_HEX8_ARRAY(want, buf, 4);
+    wire_read(XGO_REG_IMU_BLOCK, XGO_IMU_BLOCK_LEN, buf);
+    imu_expected(image, XGO_REG_IMU_BLOCK, XGO_IMU_BLOCK_LEN, want);
+    TEST_ASSERT_EQUAL_HEX8_ARRAY(want, buf, XGO_IMU_BLOCK_LEN);
+}
+
+/* Random writes as the joints' test makes (walking turns the yaw, the body
+ * pose and actions roll and pitch it, the reset and the modes), the body
+ * pose's angles at any value, and the emulator's shove and ground tilt
+ * between ticks (the model's inputs: the angles move on the next tick). */
+static void random_imu_write(uint32_t *seed, int arm)
+{
+    const uint32_t r = xgo_test_xorshift32(seed);
+    switch (r % 4u) {
+    case 0:
+        xgo_board_push(&board, (int32_t)(r >> 8) % 40000 - 20000, (int32_t)(r >> 12) % 40000 - 20000);
+        break;
+    case 1:
+        xgo_board_set_ground_tilt(&board, (int32_t)(r >> 4) % 100000 - 50000,
+                                  (int32_t)(r >> 10) % 100000 - 50000);
+        break;
+    case 2:
+        xgo_test_write1(&board, (uint8_t)(XGO_REG_BODY_ROLL + (r >> 8) % 3u), (uint8_t)(r >> 16), 0);
+        break;
+    default:
+        random_joint_write(seed, arm);
+        break;
+    }
+}
+
+static void test_imu_reads_give_the_bytes_a_tick_stored(void)
+{
+    static const xgo_model_t models[] = {XGO_MODEL_MINI, XGO_MODEL_LITE, XGO_MODEL_MINI2};
+    unsigned m, t;
+    uint32_t seed = 0x9E3779B9u;
+    for (m = 0; m < sizeof models / sizeof models[0]; m++) {
+        xgo_board_config_t cfg;
+        xgo_board_default_config(&cfg);
+        cfg.model = models[m];
+        xgo_board_init(&board, &cfg);
+        store_imu(); /* power-up */
+        check_imu_reads();
+        for (t = 0; t < 6000; t++) {
+            if (xgo_test_xorshift32(&seed) % 20u == 0) {
+                random_imu_write(&seed, models[m] == XGO_MODEL_MINI2);
+                check_imu_reads(); /* written, not yet ticked */
+            }
+            xgo_board_tick(&board);
+            store_imu();
+            if (t % 16u == 0) {
+                check_imu_reads();
+            }
+        }
+    }
+}
+
 /* A periodic motion turned off and on again starts over from its phase 0,
  * as it did the first time (the phase of an axis without one is 0). */
 static void test_a_periodic_motion_turned_on_again_starts_over(void)
@@ -692,5 +854,6 @@ int main(void)
     RUN_TEST(test_joint_reads_give_the_bytes_a_tick_stored);
     RUN_TEST(test_the_asked_pose_is_each_axis_static_or_periodic);
     RUN_TEST(test_a_periodic_motion_turned_on_again_starts_over);
+    RUN_TEST(test_imu_reads_give_the_bytes_a_tick_stored);
     return UNITY_END();
 }

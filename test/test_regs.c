@@ -694,6 +694,59 @@ static void test_int16_attitude_views_are_big_endian_centidegrees(void)
     TEST_ASSERT_EQUAL_INT(XGO_DROP_READ_ONLY, xgo_regs_write(&regs, 0x66, out, 2));
 }
 
+/* The board's reads form the IMU's registers from the motion core's outputs
+ * (xgo_regs_read_imu) into a file that never stored them: any window over
+ * them must give what a file that stored them (xgo_regs_set_attitude and
+ * _inertial, the board's old store every tick) gives, its bytes at 0x62..
+ * 0x64 those xgo_regs_get returns where no view covers them. */
+static uint32_t imu_rand(uint32_t *s)
+{
+    *s ^= *s << 13;
+    *s ^= *s >> 17;
+    *s ^= *s << 5;
+    return *s;
+}
+
+static void test_imu_registers_formed_from_outputs_equal_the_stored(void)
+{
+    xgo_regs_t fresh;
+    uint32_t seed = 0x1234567u;
+    unsigned k;
+    xgo_regs_init(&fresh, "T", 0);
+    for (k = 0; k < 20000; k++) {
+        xgo_regs_imu_t imu;
+        uint8_t want[XGO_FRAME_MAX_DATA], got[XGO_FRAME_MAX_DATA + 1];
+        const unsigned addr = 0x40u + imu_rand(&seed) % 0x40u;
+        const unsigned n = 1u + imu_rand(&seed) % (k % 4u == 0 ? 40u : 8u);
+        unsigned i;
+        for (i = 0; i < 3; i++) {
+            const uint32_t v = imu_rand(&seed);
+            imu.attitude_mdeg[i] = k % 8u == 0 ? (int32_t)v : (int32_t)(v % 400001u) - 200000;
+#if XGO_WITH_INERTIAL
+            imu.accel[i] = (int16_t)(uint16_t)imu_rand(&seed);
+            imu.gyro[i] = (int16_t)(uint16_t)imu_rand(&seed);
+#endif
+        }
+        xgo_regs_set_attitude(&regs, imu.attitude_mdeg[0], imu.attitude_mdeg[1], imu.attitude_mdeg[2]);
+#if XGO_WITH_INERTIAL
+        xgo_regs_set_inertial(&regs, imu.accel, imu.gyro);
+#endif
+        TEST_ASSERT_EQUAL_INT(XGO_DROP_NONE, xgo_regs_read(&regs, (uint8_t)addr, n, want));
+        got[n] = 0xA5;
+        xgo_regs_read_imu(&fresh, &imu, (uint8_t)addr, n, got);
+        TEST_ASSERT_EQUAL_HEX8_ARRAY(want, got, n);
+        TEST_ASSERT_EQUAL_HEX8(0xA5, got[n]);
+        if (!(addr >= XGO_REG_IMU_ROLL && addr <= XGO_REG_IMU_YAW16)) {
+            for (i = 0; i < 3; i++) {
+                const unsigned at = XGO_REG_IMU_ROLL + i;
+                if (at >= addr && at < addr + n) {
+                    TEST_ASSERT_EQUAL_HEX8(xgo_regs_get(&regs, (uint8_t)at), got[at - addr]);
+                }
+            }
+        }
+    }
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -729,5 +782,6 @@ int main(void)
     RUN_TEST(test_half_a_heading_is_rejected);
     RUN_TEST(test_imu_block_is_accel_gyro_int16_then_float_angles);
     RUN_TEST(test_int16_attitude_views_are_big_endian_centidegrees);
+    RUN_TEST(test_imu_registers_formed_from_outputs_equal_the_stored);
     return UNITY_END();
 }

@@ -220,15 +220,35 @@ static void read_joints(const xgo_board_t *b, uint8_t addr, size_t n, uint8_t *o
     }
 }
 
+/* The IMU's outputs as the last tick left them (xgo_board_init's too):
+ * only a tick changes them, so they are what the tick would have stored in
+ * the IMU's registers; a read forms those from them. */
+static void imu_outputs(const xgo_motion_t *m, xgo_regs_imu_t *imu)
+{
+#if XGO_WITH_INERTIAL
+    unsigned i;
+    for (i = 0; i < 3; i++) {
+        imu->accel[i] = m->inertial.accel[i];
+        imu->gyro[i] = m->inertial.gyro[i];
+    }
+#endif
+    imu->attitude_mdeg[0] = m->imu.roll_mdeg;
+    imu->attitude_mdeg[1] = m->imu.pitch_mdeg;
+    imu->attitude_mdeg[2] = m->imu.yaw_mdeg;
+}
+
 /* Registers as a host read returns them: the register file's image and
- * views, the joints (read_joints) and the diagnostic block formed from the
- * counters as they are now (uint32 little-endian): the register image keeps
- * no copy of either. The caller checked the range (xgo_regs_read's rule). */
+ * views with the IMU's registers formed from its outputs (imu_outputs), the
+ * joints (read_joints) and the diagnostic block formed from the counters as
+ * they are now (uint32 little-endian): the register image keeps no copy of
+ * any. The caller checked the range (xgo_regs_read's rule). */
 static void read_registers(const xgo_board_t *b, uint8_t addr, size_t n, uint8_t *out)
 {
     const size_t end = (size_t)addr + n;
     size_t reg = addr > XGO_REG_DIAG ? (size_t)addr : (size_t)XGO_REG_DIAG;
-    (void)xgo_regs_read(&b->regs, addr, n, out);
+    xgo_regs_imu_t imu;
+    imu_outputs(&b->motion, &imu);
+    xgo_regs_read_imu(&b->regs, &imu, addr, n, out);
     read_joints(b, addr, n, out);
     for (; reg < end && reg < XGO_REG_DIAG + 4u * XGO_DIAG_COUNT; reg++) {
         const unsigned i = (unsigned)(reg - XGO_REG_DIAG);

@@ -731,8 +731,9 @@ void xgo_motion_feet_body(const xgo_motion_t *m, xgo_vec3_t out[XGO_LEG_COUNT])
 
 /* ------------------------------------------------------------ publish */
 
-/* Not the joints 0x50..0x5B: a read forms them from the servos' angles
- * (board.c, read_joints), as nobody reads them most ticks. */
+/* Not the joints 0x50..0x5B nor the IMU's registers 0x62..0x68: a read
+ * forms them from the servos' angles and the IMU's outputs (board.c,
+ * read_registers), as nobody reads them most ticks. */
 void xgo_motion_publish(const xgo_motion_t *m, xgo_regs_t *r)
 {
     /* constant addresses: stores, not five calls every tick */
@@ -742,8 +743,6 @@ void xgo_motion_publish(const xgo_motion_t *m, xgo_regs_t *r)
     }
     xgo_regs_put(r, XGO_REG_ACTION, m->action_id);
     xgo_regs_put(r, XGO_REG_PERFORM, m->perform);
-    xgo_regs_set_attitude(r, m->imu.roll_mdeg, m->imu.pitch_mdeg, m->imu.yaw_mdeg);
-    xgo_regs_set_inertial(r, m->inertial.accel, m->inertial.gyro);
     xgo_regs_put(r, XGO_REG_TURN_TO, xgo_heading_done(&m->heading));
     xgo_arm_publish(&m->arm, r);
 }

@@ -41,6 +41,26 @@ xgo_drop_reason_t xgo_regs_write(xgo_regs_t *r, uint8_t addr, const uint8_t *dat
  * XGO_DROP_NONE, or XGO_DROP_BAD_RANGE for n == 0, n > 247 or addr + n > 256. */
 xgo_drop_reason_t xgo_regs_read(const xgo_regs_t *r, uint8_t addr, size_t n, uint8_t *out);
 
+/* The IMU's outputs a read forms its registers from: the angles (the bytes
+ * at 0x62..0x64, the float32 views there, the block's floats, the int16
+ * views at 0x66..0x68) and, with the model, the block's acceleration and
+ * angular rate. */
+typedef struct {
+    int32_t attitude_mdeg[3]; /* roll, pitch, yaw */
+#if XGO_WITH_INERTIAL
+    int16_t accel[3];
+    int16_t gyro[3];
+#endif
+} xgo_regs_imu_t;
+
+/* xgo_regs_read with the IMU's registers formed from imu, not from the
+ * file's copy (xgo_regs_set_attitude, xgo_regs_set_inertial): the board's
+ * reads, which take them from the motion core's state as it is now, so that
+ * a tick stores none of them. The caller checked the range (xgo_regs_read's
+ * rule). */
+void xgo_regs_read_imu(const xgo_regs_t *r, const xgo_regs_imu_t *imu, uint8_t addr, size_t n,
+                       uint8_t *out);
+
 /* Board-side access: no validation, no counting; addr below
  * XGO_REGS_STORED (the diagnostic block is the board's, formed on read). */
 uint8_t xgo_regs_get(const xgo_regs_t *r, uint8_t addr);
@@ -83,15 +103,15 @@ XGO_ALWAYS_INLINE int xgo_regs_take_any_written(xgo_regs_t *r) /* inline: every 
     return was;
 }
 
-/* Board-side updates of computed registers. */
+/* The file's copy of the IMU's outputs, what xgo_regs_read forms the IMU's
+ * registers from (a register file without a board: the tests; the board
+ * reads them from the motion core instead, xgo_regs_read_imu). */
 void xgo_regs_set_attitude(xgo_regs_t *r, int32_t roll_mdeg, int32_t pitch_mdeg, int32_t yaw_mdeg);
 /* The IMU block's acceleration (16384 LSB = 1 g) and angular rate (16.4 LSB
- * = 1 deg/s), body axes x forward, y left, z up (docs/motion.md). Inline:
- * every tick. */
+ * = 1 deg/s), body axes x forward, y left, z up (docs/motion.md). */
 XGO_ALWAYS_INLINE void xgo_regs_set_inertial(xgo_regs_t *r, const int16_t accel[3], const int16_t gyro[3])
 {
 #if XGO_WITH_INERTIAL
-    /* six halfwords, every tick: six moves (no loop, no memcpy calls) */
     r->accel[0] = accel[0];
     r->accel[1] = accel[1];
     r->accel[2] = accel[2];

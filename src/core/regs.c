@@ -533,24 +533,30 @@ static void put_u16_le(uint8_t *out, int16_t v)
 
 /* The 0x65 view: acceleration x, y, z and angular rate x, y, z as int16
  * little-endian, then roll, pitch, yaw as float32 little-endian degrees. */
-static void imu_block(const xgo_regs_t *r, uint8_t out[XGO_IMU_BLOCK_LEN])
+static void imu_block(const xgo_regs_imu_t *imu, uint8_t out[XGO_IMU_BLOCK_LEN])
 {
     unsigned i;
     for (i = 0; i < 3; i++) {
 #if XGO_WITH_INERTIAL
-        put_u16_le(&out[2u * i], r->accel[i]);
-        put_u16_le(&out[6u + 2u * i], r->gyro[i]);
+        put_u16_le(&out[2u * i], imu->accel[i]);
+        put_u16_le(&out[6u + 2u * i], imu->gyro[i]);
 #else
         put_u16_le(&out[2u * i], 0); /* no model: a port would put a real IMU's here */
         put_u16_le(&out[6u + 2u * i], 0);
 #endif
-        put_u32_le(&out[12u + 4u * i], xgo_mdeg_to_float32_bits(r->attitude_mdeg[i]));
+        put_u32_le(&out[12u + 4u * i], xgo_mdeg_to_float32_bits(imu->attitude_mdeg[i]));
     }
 }
 
 /* Views chosen by the first address of a read; they replace the start of
- * the flat image's bytes (the rest of a longer read stays flat). */
-static void apply_read_views(const xgo_regs_t *r, uint8_t addr, size_t n, uint8_t *out)
+ * the flat image's bytes (the rest of a longer read stays flat): the
+ * firmware string (0x07), an angle's float32 (a read of four bytes or more
+ * at 0x62..0x64: it covers what the window holds of 0x62..0x64), the block
+ * (0x65), an angle's int16 (0x66..0x68). Under none of the IMU's, the
+ * bytes at 0x62..0x64 in the window are formed from imu's angles (the
+ * image's are a level attitude's). */
+static void apply_read_views(const xgo_regs_t *r, const xgo_regs_imu_t *imu, uint8_t addr, size_t n,
+                             uint8_t *out)
 {
     uint8_t view[XGO_IMU_BLOCK_LEN];
     size_t len = 0, i;
@@ -559,16 +565,24 @@ static void apply_read_views(const xgo_regs_t *r, uint8_t addr, size_t n, uint8_
         view[XGO_REG_GAIT_TYPE - XGO_REG_FIRMWARE] = (uint8_t)r->firmware_at_gait;
         len = XGO_FIRMWARE_LEN;
     } else if (addr >= XGO_REG_IMU_ROLL && addr <= XGO_REG_IMU_YAW && n >= 4) {
-        put_u32_le(view, xgo_mdeg_to_float32_bits(r->attitude_mdeg[addr - XGO_REG_IMU_ROLL]));
+        put_u32_le(view, xgo_mdeg_to_float32_bits(imu->attitude_mdeg[addr - XGO_REG_IMU_ROLL]));
         len = 4;
     } else if (addr == XGO_REG_IMU_BLOCK) {
-        imu_block(r, view);
+        imu_block(imu, view);
         len = XGO_IMU_BLOCK_LEN;
     } else if (addr >= XGO_REG_IMU_ROLL16 && addr <= XGO_REG_IMU_YAW16) {
-        const uint16_t v = (uint16_t)xgo_mdeg_to_centideg(r->attitude_mdeg[addr - XGO_REG_IMU_ROLL16]);
+        const uint16_t v = (uint16_t)xgo_mdeg_to_centideg(imu->attitude_mdeg[addr - XGO_REG_IMU_ROLL16]);
         view[0] = (uint8_t)(v >> 8); /* big-endian, as read_imu_int16 decodes */
         view[1] = (uint8_t)v;
         len = 2;
+    } else if (addr <= XGO_REG_IMU_YAW) {
+        /* no view over them: the bytes at 0x62..0x64 in the window */
+        for (i = 0; i < 3; i++) {
+            const size_t at = (size_t)(XGO_REG_IMU_ROLL + i) - addr; /* wraps above n before addr */
+            if (at < n) {
+                out[at] = xgo_angle_to_byte(imu->attitude_mdeg[i]);
+            }
+        }
     }
     for (i = 0; i < n && i < len; i++) {
         out[i] = view[i];
@@ -592,21 +606,35 @@ static void image_read(const xgo_regs_t *r, unsigned addr, size_t n, uint8_t *ou
     }
 }
 
+void xgo_regs_read_imu(const xgo_regs_t *r, const xgo_regs_imu_t *imu, uint8_t addr, size_t n,
+                       uint8_t *out)
+{
+    image_read(r, addr, n, out);
+    apply_read_views(r, imu, addr, n, out);
+}
+
 xgo_drop_reason_t xgo_regs_read(const xgo_regs_t *r, uint8_t addr, size_t n, uint8_t *out)
 {
+    xgo_regs_imu_t imu; /* the file's copy */
     if (n == 0 || n > XGO_FRAME_MAX_DATA || (size_t)addr + n > XGO_REG_COUNT) {
         return XGO_DROP_BAD_RANGE;
     }
-    image_read(r, addr, n, out);
-    apply_read_views(r, addr, n, out);
+    memcpy(imu.attitude_mdeg, r->attitude_mdeg, sizeof imu.attitude_mdeg);
+#if XGO_WITH_INERTIAL
+    memcpy(imu.accel, r->accel, sizeof imu.accel);
+    memcpy(imu.gyro, r->gyro, sizeof imu.gyro);
+#endif
+    xgo_regs_read_imu(r, &imu, addr, n, out);
     return XGO_DROP_NONE;
 }
 
-/* One angle of 0x62..0x64: its byte encoded again only when the angle
- * changed (the byte is a function of it, and nothing else writes there: the
- * registers are computed, read-only; xgo_regs_init writes all three).
- * Every tick: a body held at a roll or a pitch, or not turning, spares the
- * encoding (about 40 instructions each on a Cortex-M0).
+/* One angle of the file's copy, and its byte at 0x62..0x64 (what
+ * xgo_regs_get gives; a read forms the byte from the angle): the byte
+ * encoded again only when the angle changed (it is a function of it, and
+ * nothing else writes there: the registers are computed, read-only;
+ * xgo_regs_init writes all three). The board no longer calls this every
+ * tick (its reads form the IMU's registers from the motion core), but a
+ * body held at a roll or a pitch, or not turning, spares the encoding.
  * On a 64-bit host an angle that changed but stayed in its byte's bucket
  * keeps the byte without the encoding's call (x86-64: about 20
  * instructions; a turning or pitching body crosses a bucket's edge, 1.4
