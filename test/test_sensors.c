@@ -12,8 +12,6 @@
 #include "xgo/config.h"
 #include "sensors.h"
 #include "fixed.h" /* xgo_wrap_mdeg, xgo_sat32: the reference below */
-#include "codec.h"   /* xgo_angle_to_byte: the attitude bytes' reference */
-#include "regfile.h" /* xgo_regs_set_attitude, the IMU angles' publishing */
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -213,48 +211,6 @@ static void test_attitude_is_the_clamped_sum_wrapped(void)
     }
 }
 
-/* The attitude bytes 0x62..0x64 (xgo_regs_set_attitude keeps a byte while
- * its angle stays in the byte's bucket, on a 64-bit host) are
- * xgo_angle_to_byte of the angles after every set: random walks of steps
- * from a millidegree to beyond a bucket (1406.25 mdeg), every bucket's
- * edges (m * 128 = 180000 q +- 90000, each side), jumps anywhere in int32. */
-static void test_attitude_bytes_are_the_encoded_angles(void)
-{
-    xgo_regs_t r;
-    int32_t a[3] = {0, 0, 0};
-    uint32_t seed = 17u;
-    unsigned k, i;
-    xgo_regs_init(&r, "T", 0);
-    for (k = 0; k < 600000u; ++k) {
-        for (i = 0; i < 3u; i++) {
-            seed = seed * 1664525u + 1013904223u;
-            switch (k % 4u) {
-            case 0: /* a small step: mostly within the bucket */
-                a[i] = xgo_wrap_mdeg(a[i] + (int32_t)(seed >> 22) - 512);
-                break;
-            case 1: /* a step of up to about two buckets */
-                a[i] = xgo_wrap_mdeg(a[i] + (int32_t)(seed >> 20) - 2048);
-                break;
-            case 2: { /* next to an edge: 128 m within 2 of 180000 q +- 90000 */
-                const int32_t q = (int32_t)((seed >> 8) % 257u) - 128;
-                const int32_t edge = 180000 * q + ((seed & 1u) ? 90000 : -90000);
-                a[i] = (edge + (int32_t)((seed >> 1) % 5u) * 64 - 128) / 128;
-                break;
-            }
-            default: /* anywhere, beyond the clamps too */
-                a[i] = (k & 8u) ? (int32_t)seed : (int32_t)(seed % 400001u) - 200000;
-                break;
-            }
-        }
-        xgo_regs_set_attitude(&r, a[0], a[1], a[2]);
-        for (i = 0; i < 3u; i++) {
-            if (xgo_regs_get(&r, (uint8_t)(XGO_REG_IMU_ROLL + i)) != xgo_angle_to_byte(a[i])) {
-                TEST_FAIL_MESSAGE("an attitude byte is not its angle's");
-            }
-        }
-    }
-}
-
 int main(void)
 {
     UNITY_BEGIN();
@@ -262,7 +218,6 @@ int main(void)
     RUN_TEST(test_is_percent_is_the_percent_and_nothing_else);
     RUN_TEST(test_roll_and_pitch_are_body_plus_ground_tilt);
     RUN_TEST(test_attitude_is_the_clamped_sum_wrapped);
-    RUN_TEST(test_attitude_bytes_are_the_encoded_angles);
     RUN_TEST(test_a_shove_rings_down_like_the_damped_spring);
     RUN_TEST(test_battery_drains_at_the_documented_rates);
     return UNITY_END();

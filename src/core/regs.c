@@ -11,7 +11,6 @@
 #include "codec.h"
 #include "compiler.h"
 #include "regfile.h"
-#include "wide.h" /* XGO_CORE_DIV64_NATIVE */
 #include "xgo/profile.h"
 
 /* Flags column: 0 or a XGO_REGF_ suffix. */
@@ -633,29 +632,12 @@ xgo_drop_reason_t xgo_regs_read(const xgo_regs_t *r, uint8_t addr, size_t n, uin
  * encoded again only when the angle changed (it is a function of it, and
  * nothing else writes there: the registers are computed, read-only;
  * xgo_regs_init writes all three). The board no longer calls this every
- * tick (its reads form the IMU's registers from the motion core), but a
- * body held at a roll or a pitch, or not turning, spares the encoding.
- * On a 64-bit host an angle that changed but stayed in its byte's bucket
- * keeps the byte without the encoding's call (x86-64: about 20
- * instructions; a turning or pitching body crosses a bucket's edge, 1.4
- * degrees apart, a few ticks in a hundred): byte b = 128 + q stands for
- * the angles m with 128 m - 180000 q in [-90000, 90000] (xgo_angle_to_byte:
- * round(m / 1406.25), half away from zero, clamped), the edges' side
- * depending on q's sign; strictly inside, the byte is b whatever q. */
+ * tick: its reads form the IMU's registers from the motion core. */
 XGO_INLINE_FAST void set_angle(xgo_regs_t *r, unsigned i, int32_t mdeg)
 {
     if (r->attitude_mdeg[i] != mdeg) {
-        uint8_t *byte = &r->mem[slot(XGO_REG_IMU_ROLL + i)];
         r->attitude_mdeg[i] = mdeg;
-#if XGO_CORE_DIV64_NATIVE
-        {
-            const int64_t t = (int64_t)mdeg * 128 - 180000 * ((int32_t)*byte - 128);
-            if (t > -90000 && t < 90000) {
-                return;
-            }
-        }
-#endif
-        *byte = xgo_angle_to_byte(mdeg);
+        r->mem[slot(XGO_REG_IMU_ROLL + i)] = xgo_angle_to_byte(mdeg);
     }
 }
 
