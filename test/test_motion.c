@@ -12,7 +12,9 @@
 #include "board_unity.h"
 #include "codec.h"
 #include "gait.h"   /* XGO_GAIT_STOP_TICKS_MAX */
+#include "heading.h" /* XGO_HEADING_RATE_MDEG_S */
 #include "motion.h" /* XGO_JOINT_STEP_MAX_MDEG */
+#include "motion_internal.h" /* xgo_motion_gait_command, xgo_motion_stroke */
 #include "unity.h"
 #include "xgo/board.h"
 #include "xgo/emulator.h"
@@ -673,6 +675,55 @@ static void test_random_commands_never_jump_joints_or_break_limits(void)
     }
 }
 
+/* The stroke the reach checks (motion.c, update_stroke) is always that of
+ * the command of the tick: its key the command's (a turn to a heading at
+ * its highest rate) and the stroke xgo_motion_stroke's for the key, under
+ * random changes of each field, one at a time and together. The host
+ * compares the key's four words at once (same_stroke_command): a change
+ * that compare missed would leave a stale key here. */
+static void test_stroke_follows_every_command_change(void)
+{
+    static const uint8_t regs[] = {XGO_REG_VX, XGO_REG_VY, XGO_REG_VYAW, XGO_REG_MARK_TIME, XGO_REG_MOVE_MODE,
+                                   XGO_REG_GAIT_TYPE, XGO_REG_TURN_TO};
+    static xgo_motion_t copy;
+    unsigned t, n, checked = 0;
+    for (t = 0; t < 20000; t++) {
+        const unsigned changes = rng() % 8 == 0 ? 1u + rng() % 3u : 0u;
+        for (n = 0; n < changes; n++) {
+            const uint8_t addr = regs[rng() % sizeof regs];
+            /* near the dead band and the extremes as often as anywhere */
+            const uint8_t v = (uint8_t)(rng() % 2 ? rng() : 0x7Eu + rng() % 5u);
+            (void)xgo_board_write(&board, XGO_SOURCE_CLI, addr, &v, 1);
+        }
+        ticks(1);
+        if (board.motion.mode == XGO_MODE_WHOLE_UNIT && board.motion.action_id == 0) {
+            const xgo_motion_t *m = &board.motion;
+            xgo_gait_command_t cmd;
+            xgo_vec3_t stroke[XGO_LEG_COUNT];
+            int walks;
+            copy = *m; /* the decode may fill its cache: on a copy */
+            xgo_motion_gait_command(&copy, &board.regs, &cmd);
+            if (xgo_heading_active(&m->heading)) {
+                cmd.vx_um_s = cmd.vy_um_s = cmd.mark_time_um = 0;
+                cmd.vyaw_mdeg_s = XGO_HEADING_RATE_MDEG_S;
+            }
+            TEST_ASSERT_EQUAL_INT32(cmd.vx_um_s, m->stroke_key[0]);
+            TEST_ASSERT_EQUAL_INT32(cmd.vy_um_s, m->stroke_key[1]);
+            TEST_ASSERT_EQUAL_INT32(cmd.vyaw_mdeg_s, m->stroke_key[2]);
+            TEST_ASSERT_EQUAL_INT32(cmd.mark_time_um, m->stroke_key[3]);
+            TEST_ASSERT_EQUAL_INT32(cmd.type | (cmd.pace << 8), m->stroke_key[4]);
+            copy.stroke_margin_um = m->stroke_key[5]; /* the margin it was worked out with */
+            walks = xgo_motion_stroke(&copy, &cmd, stroke);
+            TEST_ASSERT_EQUAL_UINT8((uint8_t)walks, m->stroke_walks);
+            if (walks) { /* a command that does not walk leaves the stroke as it was */
+                TEST_ASSERT_EQUAL_MEMORY(stroke, m->stroke, sizeof stroke);
+            }
+            checked++;
+        }
+    }
+    TEST_ASSERT_GREATER_THAN_UINT(10000u, checked);
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -704,5 +755,6 @@ int main(void)
     RUN_TEST(test_battery_drains_faster_while_walking);
     RUN_TEST(test_lite_profile_version_and_ranges);
     RUN_TEST(test_random_commands_never_jump_joints_or_break_limits);
+    RUN_TEST(test_stroke_follows_every_command_change);
     return UNITY_END();
 }

@@ -6,6 +6,7 @@
  */
 #include "motion.h"
 
+#include <stddef.h>
 #include <string.h>
 
 #include "codec.h"
@@ -14,6 +15,28 @@
 #include "reach.h"
 #include "settle.h"
 #include "wide.h" /* XGO_CORE_DIV64_NATIVE */
+
+/* How the walking tick's functions are built. On a 64-bit host the stack
+ * is no budget and each call costs its saved registers and argument moves:
+ * the tick's stages are inline there, one frame for the walking tick. On
+ * an MCU:
+ * WALK_FRAME: out of line (XGO_OWN_FRAME), so their locals do not widen
+ *   the frame the reach search starts from (gait_command, update_stroke,
+ *   reachable_target, walk_tick, solve_joints);
+ * HOST_INLINE: plain static, the compiler decides (solve_tick,
+ *   whole_unit_targets);
+ * HOST_APART: the other way round, inline on an MCU and out of line on the
+ *   host, for a rare path whose stores the host's compiler would otherwise
+ *   prepare every tick (new_stroke). */
+#if XGO_CORE_DIV64_NATIVE
+#define WALK_FRAME XGO_ALWAYS_INLINE
+#define HOST_INLINE XGO_ALWAYS_INLINE
+#define HOST_APART static XGO_OWN_FRAME
+#else
+#define WALK_FRAME static XGO_OWN_FRAME
+#define HOST_INLINE static
+#define HOST_APART XGO_ALWAYS_INLINE
+#endif
 
 /* The stroke checked grows by this when a planted foot runs out of reach
  * anyway (up to the max), see reachable_target. */
@@ -135,24 +158,30 @@ static void action_pose(xgo_motion_t *m, xgo_body_pose_t *pose, xgo_vec3_t feet[
  * still (the common case) then costs almost nothing, which matters on a
  * Cortex-M0 (docs/mcu.md). The leg-frame feet are not kept (48 bytes of
  * RAM; an observer works them out again, xgo_motion_feet_body); out of
- * line, so they are not in the frame the reach search's deeper path
- * starts from. */
-XGO_OWN_FRAME static void solve_joints(xgo_motion_t *m, const xgo_body_pose_t *pose,
-                                       const xgo_vec3_t feet[XGO_LEG_COUNT])
+ * line on an MCU, so they are not in the frame the reach search's deeper
+ * path starts from. */
+WALK_FRAME void solve_joints(xgo_motion_t *m, const xgo_body_pose_t *pose,
+                             const xgo_vec3_t feet[XGO_LEG_COUNT])
 {
     if (!m->ik_cache.valid || !same_pose(&m->ik_cache.pose, pose) ||
         !same_feet(m->ik_cache.feet, feet)) {
         xgo_vec3_t feet_leg[XGO_LEG_COUNT];
-        unsigned leg;
         if (m->ik_cache.valid) { /* rot_q30 is the cached pose's: its roll may serve */
             xgo_body_rotation_next(&m->ik_cache.pose, pose, m->ik_cache.rot_q30);
         } else {
             xgo_body_rotation(pose, m->ik_cache.rot_q30);
         }
         m->ik_cache.pose = *pose;
-        for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
-            m->ik_cache.feet[leg] = feet[leg]; /* no memcpy call: every walking tick */
+#if XGO_CORE_DIV64_NATIVE /* three 16-byte moves, inline (feet is never the cache's) */
+        memcpy(m->ik_cache.feet, feet, sizeof m->ik_cache.feet);
+#else
+        {
+            unsigned leg;
+            for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
+                m->ik_cache.feet[leg] = feet[leg]; /* no memcpy call: every walking tick */
+            }
         }
+#endif
         xgo_body_ik_rotated(m->profile, pose, m->ik_cache.rot_q30, feet, feet_leg);
         m->ik_cache.projected = (uint8_t)xgo_legs_ik(m->profile, feet_leg,
                                                      (int32_t(*)[XGO_JOINT_COUNT])m->ik_cache.q_mdeg);
@@ -340,7 +369,7 @@ static void action_targets(xgo_motion_t *m, xgo_body_pose_t *pose, xgo_vec3_t fe
 }
 
 /* The command the gait follows: the registers', or a turn to a heading. */
-static XGO_OWN_FRAME void gait_command(xgo_motion_t *m, const xgo_regs_t *r, xgo_gait_command_t *cmd)
+WALK_FRAME void gait_command(xgo_motion_t *m, const xgo_regs_t *r, xgo_gait_command_t *cmd)
 {
     xgo_motion_gait_command(m, r, cmd);
     if (xgo_heading_active(&m->heading)) {
@@ -350,32 +379,59 @@ static XGO_OWN_FRAME void gait_command(xgo_motion_t *m, const xgo_regs_t *r, xgo
     }
 }
 
+/* key (vx, vy, vyaw, mark time, kind, margin) is that of cmd with the yaw
+ * rate vyaw and kind (type, pace), the margin aside. */
+static int same_stroke_command(const int32_t key[6], const xgo_gait_command_t *cmd, int32_t vyaw, int32_t kind)
+{
+#if XGO_CORE_DIV64_NATIVE
+    /* the key's first four words are the command's (checked below) when the
+     * yaw rate is the command's: one 16-byte compare on a 64-bit host */
+    if (vyaw == cmd->vyaw_mdeg_s) {
+        return memcmp(key, cmd, 4 * sizeof *key) == 0 && key[4] == kind;
+    }
+#endif
+    return key[0] == cmd->vx_um_s && key[1] == cmd->vy_um_s && key[2] == vyaw &&
+           key[3] == cmd->mark_time_um && key[4] == kind;
+}
+
+typedef char xgo_motion_stroke_key_check_[offsetof(xgo_gait_command_t, vx_um_s) == 0 &&
+                                                  offsetof(xgo_gait_command_t, vy_um_s) == 4 &&
+                                                  offsetof(xgo_gait_command_t, vyaw_mdeg_s) == 8 &&
+                                                  offsetof(xgo_gait_command_t, mark_time_um) == 12
+                                              ? 1
+                                              : -1];
+
+/* A new key and its stroke (a command or margin changed: rare). */
+HOST_APART void new_stroke(xgo_motion_t *m, const xgo_gait_command_t *cmd, int32_t vyaw, int32_t kind)
+{
+    int32_t *key = m->stroke_key;
+    xgo_gait_command_t c = *cmd;
+    c.vyaw_mdeg_s = vyaw;
+    key[0] = c.vx_um_s;
+    key[1] = c.vy_um_s;
+    key[2] = vyaw;
+    key[3] = c.mark_time_um;
+    key[4] = kind;
+    key[5] = m->stroke_margin_um;
+    m->stroke_walks = (uint8_t)xgo_motion_stroke(m, &c, m->stroke);
+}
+
 /* The stroke the reach checks walk (reach.h): that of the command (a turn
  * to a heading: at its highest rate), recomputed when the command or the
  * learnt margin changes; it applies while walking and while still stopping
  * (the last one kept). */
-static XGO_OWN_FRAME void update_stroke(xgo_motion_t *m, const xgo_gait_command_t *cmd)
+WALK_FRAME void update_stroke(xgo_motion_t *m, const xgo_gait_command_t *cmd)
 {
     const int32_t vyaw = xgo_heading_active(&m->heading) ? XGO_HEADING_RATE_MDEG_S : cmd->vyaw_mdeg_s;
     const int32_t kind = cmd->type | (cmd->pace << 8);
-    int32_t *key = m->stroke_key;
-    const int same_command = key[0] == cmd->vx_um_s && key[1] == cmd->vy_um_s && key[2] == vyaw &&
-                             key[3] == cmd->mark_time_um && key[4] == kind;
+    const int same_command = same_stroke_command(m->stroke_key, cmd, vyaw, kind);
     if (!same_command) {
         m->stroke_margin_um = 0; /* a new command: nothing learnt yet */
     }
     /* compared in place, the command copied only when it changed (every
      * tick otherwise) */
-    if (!same_command || key[5] != m->stroke_margin_um) {
-        xgo_gait_command_t c = *cmd;
-        c.vyaw_mdeg_s = vyaw;
-        key[0] = c.vx_um_s;
-        key[1] = c.vy_um_s;
-        key[2] = vyaw;
-        key[3] = c.mark_time_um;
-        key[4] = kind;
-        key[5] = m->stroke_margin_um;
-        m->stroke_walks = (uint8_t)xgo_motion_stroke(m, &c, m->stroke);
+    if (!same_command || m->stroke_key[5] != m->stroke_margin_um) {
+        new_stroke(m, cmd, vyaw, kind);
     }
     if (m->stroke_walks) {
         m->stroke_on = 1;
@@ -387,8 +443,7 @@ static XGO_OWN_FRAME void update_stroke(xgo_motion_t *m, const xgo_gait_command_
 /* The pose the registers ask for, turned into one the legs hold with all
  * four feet down (reach.h), for the feet standing or running their stroke.
  * Counts the ticks where the two differ. */
-static XGO_OWN_FRAME void reachable_target(xgo_motion_t *m, const xgo_regs_t *r,
-                                                 const xgo_gait_command_t *cmd)
+WALK_FRAME void reachable_target(xgo_motion_t *m, const xgo_regs_t *r, const xgo_gait_command_t *cmd)
 {
     xgo_body_pose_t asked, base, spread;
     xgo_motion_asked_pose(m, r, &asked, &base, &spread);
@@ -402,7 +457,7 @@ static XGO_OWN_FRAME void reachable_target(xgo_motion_t *m, const xgo_regs_t *r,
 /* The pose of this tick and the feet under it made joint targets; a planted
  * foot that ran out of reach where the stroke checked did not go makes the
  * reach check a longer one (a new search from the next tick). */
-static void solve_tick(xgo_motion_t *m, const xgo_body_pose_t *pose, const xgo_vec3_t feet[XGO_LEG_COUNT])
+HOST_INLINE void solve_tick(xgo_motion_t *m, const xgo_body_pose_t *pose, const xgo_vec3_t feet[XGO_LEG_COUNT])
 {
     m->pose = *pose;
     solve_joints(m, pose, feet);
@@ -424,10 +479,9 @@ static XGO_OWN_FRAME void action_tick(xgo_motion_t *m, int32_t *yaw_rate_mdeg_s)
 
 /* The feet of the gait (or the settle's while the feet go home) under cmd,
  * the body following the reachable target, solved; returns 1 while
- * walking or moving. Out of line: its feet and pose are not on the stack
- * while reachable_target searches. */
-static XGO_OWN_FRAME int walk_tick(xgo_motion_t *m, xgo_gait_command_t *cmd,
-                                         int32_t *yaw_rate_mdeg_s)
+ * walking or moving. Out of line on an MCU: its feet and pose are not on
+ * the stack while reachable_target searches. */
+WALK_FRAME int walk_tick(xgo_motion_t *m, xgo_gait_command_t *cmd, int32_t *yaw_rate_mdeg_s)
 {
     xgo_vec3_t feet[XGO_LEG_COUNT];
     const xgo_vec3_t *at = feet; /* the settle's, or the gait's in place (no copy) */
@@ -451,7 +505,7 @@ static XGO_OWN_FRAME int walk_tick(xgo_motion_t *m, xgo_gait_command_t *cmd,
 
 /* Whole unit: an action's targets, or the gait's under the reachable
  * target; the joint targets in m->ik_cache.q_mdeg. */
-static int whole_unit_targets(xgo_motion_t *m, const xgo_regs_t *r, int32_t *yaw_rate_mdeg_s)
+HOST_INLINE int whole_unit_targets(xgo_motion_t *m, const xgo_regs_t *r, int32_t *yaw_rate_mdeg_s)
 {
     xgo_gait_command_t cmd;
     *yaw_rate_mdeg_s = 0;
