@@ -159,14 +159,15 @@ static void action_pose(xgo_motion_t *m, xgo_body_pose_t *pose, xgo_vec3_t feet[
  * Cortex-M0 (docs/mcu.md). The leg-frame feet are not kept (48 bytes of
  * RAM; an observer works them out again, xgo_motion_feet_body); out of
  * line on an MCU, so they are not in the frame the reach search's deeper
- * path starts from. */
-WALK_FRAME void solve_joints(xgo_motion_t *m, const xgo_body_pose_t *pose,
-                             const xgo_vec3_t feet[XGO_LEG_COUNT])
+ * path starts from. The rotation is updated from the cached one
+ * (xgo_body_rotation_next) when update, else worked out whole: the same. */
+XGO_ALWAYS_INLINE void solve_joints_with(xgo_motion_t *m, const xgo_body_pose_t *pose,
+                                         const xgo_vec3_t feet[XGO_LEG_COUNT], int update)
 {
     if (!m->ik_cache.valid || !same_pose(&m->ik_cache.pose, pose) ||
         !same_feet(m->ik_cache.feet, feet)) {
         xgo_vec3_t feet_leg[XGO_LEG_COUNT];
-        if (m->ik_cache.valid) { /* rot_q30 is the cached pose's: its roll may serve */
+        if (update && m->ik_cache.valid) { /* rot_q30 is the cached pose's: its roll may serve */
             xgo_body_rotation_next(&m->ik_cache.pose, pose, m->ik_cache.rot_q30);
         } else {
             xgo_body_rotation(pose, m->ik_cache.rot_q30);
@@ -188,6 +189,25 @@ WALK_FRAME void solve_joints(xgo_motion_t *m, const xgo_body_pose_t *pose,
         m->ik_cache.valid = 1;
     }
 }
+
+WALK_FRAME void solve_joints(xgo_motion_t *m, const xgo_body_pose_t *pose, const xgo_vec3_t feet[XGO_LEG_COUNT])
+{
+    solve_joints_with(m, pose, feet, 1);
+}
+
+/* The other modes' solves (going_home, action_tick): on a 64-bit host an
+ * out-of-line copy that works the rotation out whole, so that the walking
+ * tick's inline copy is xgo_body_rotation_next's one caller and has it
+ * inline too; on an MCU solve_joints, the one out-of-line solve. */
+#if XGO_CORE_DIV64_NATIVE
+static XGO_OWN_FRAME void solve_joints_apart(xgo_motion_t *m, const xgo_body_pose_t *pose,
+                                             const xgo_vec3_t feet[XGO_LEG_COUNT])
+{
+    solve_joints_with(m, pose, feet, 0);
+}
+#else
+#define solve_joints_apart solve_joints
+#endif
 
 /* ------------------------------------------------------------ transitions */
 
@@ -456,16 +476,33 @@ WALK_FRAME void reachable_target(xgo_motion_t *m, const xgo_regs_t *r, const xgo
 
 /* The pose of this tick and the feet under it made joint targets; a planted
  * foot that ran out of reach where the stroke checked did not go makes the
- * reach check a longer one (a new search from the next tick). */
-HOST_INLINE void solve_tick(xgo_motion_t *m, const xgo_body_pose_t *pose, const xgo_vec3_t feet[XGO_LEG_COUNT])
+ * reach check a longer one (a new search from the next tick). Solved by
+ * solve_joints (walking_copy) or solve_joints_apart. */
+XGO_ALWAYS_INLINE void solve_tick_with(xgo_motion_t *m, const xgo_body_pose_t *pose,
+                                       const xgo_vec3_t feet[XGO_LEG_COUNT], int walking_copy)
 {
     m->pose = *pose;
-    solve_joints(m, pose, feet);
+    if (walking_copy) {
+        solve_joints(m, pose, feet);
+    } else {
+        solve_joints_apart(m, pose, feet);
+    }
     if ((m->ik_cache.projected & m->contact) != 0 && m->stroke_on && m->action_id == 0 &&
         !m->reach.searching && m->stroke_margin_um < STROKE_MARGIN_MAX_UM) {
         m->stroke_margin_um += STROKE_MARGIN_STEP_UM;
     }
 }
+
+HOST_INLINE void solve_tick(xgo_motion_t *m, const xgo_body_pose_t *pose, const xgo_vec3_t feet[XGO_LEG_COUNT])
+{
+    solve_tick_with(m, pose, feet, 1);
+}
+
+#if XGO_CORE_DIV64_NATIVE /* action_tick's: with solve_joints_apart */
+#define solve_tick_apart(m, pose, feet) solve_tick_with((m), (pose), (feet), 0)
+#else
+#define solve_tick_apart solve_tick
+#endif
 
 /* A running action's tick (action_targets), solved. Out of line, as
  * walk_tick. */
@@ -474,7 +511,7 @@ static XGO_OWN_FRAME void action_tick(xgo_motion_t *m, int32_t *yaw_rate_mdeg_s)
     xgo_vec3_t feet[XGO_LEG_COUNT];
     xgo_body_pose_t pose;
     action_targets(m, &pose, feet, yaw_rate_mdeg_s);
-    solve_tick(m, &pose, feet);
+    solve_tick_apart(m, &pose, feet);
 }
 
 /* The feet of the gait (or the settle's while the feet go home) under cmd,
@@ -537,7 +574,7 @@ static int going_home(xgo_motion_t *m)
     transition_step(m, &m->stand, feet, &pose);
     m->pose = pose;
     m->pose_target = m->stand;
-    solve_joints(m, &pose, feet);
+    solve_joints_apart(m, &pose, feet);
     return 1;
 }
 
