@@ -15,6 +15,7 @@
 #include "heading.h" /* XGO_HEADING_RATE_MDEG_S */
 #include "motion.h" /* XGO_JOINT_STEP_MAX_MDEG */
 #include "motion_internal.h" /* xgo_motion_gait_command, xgo_motion_stroke */
+#include "settle.h"          /* xgo_settle_active */
 #include "unity.h"
 #include "xgo/board.h"
 #include "xgo/emulator.h"
@@ -724,6 +725,33 @@ static void test_stroke_follows_every_command_change(void)
     TEST_ASSERT_GREATER_THAN_UINT(10000u, checked);
 }
 
+/* The contacts the motion core takes from the gait (motion.c,
+ * gait_contact_bits: on a 64-bit host one multiply of the four bytes) are
+ * its four bytes as bits, leg i bit i, every walking tick under random
+ * velocity, mark time and gait type changes. */
+static void test_contacts_are_the_gaits(void)
+{
+    static const uint8_t regs[] = {XGO_REG_VX, XGO_REG_VY, XGO_REG_VYAW, XGO_REG_MARK_TIME, XGO_REG_GAIT_TYPE};
+    unsigned t, leg, checked = 0;
+    for (t = 0; t < 20000; t++) {
+        if (rng() % 16 == 0) {
+            const uint8_t v = (uint8_t)rng();
+            (void)xgo_board_write(&board, XGO_SOURCE_CLI, regs[rng() % sizeof regs], &v, 1);
+        }
+        ticks(1);
+        if (board.motion.mode == XGO_MODE_WHOLE_UNIT && board.motion.action_id == 0 &&
+            !xgo_settle_active(&board.motion.settle)) {
+            unsigned want = 0;
+            for (leg = 0; leg < XGO_LEG_COUNT; leg++) {
+                want |= (unsigned)(board.motion.gait.contact[leg] != 0) << leg;
+            }
+            TEST_ASSERT_EQUAL_HEX8(want, board.motion.contact);
+            checked++;
+        }
+    }
+    TEST_ASSERT_GREATER_THAN_UINT(10000u, checked);
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -756,5 +784,6 @@ int main(void)
     RUN_TEST(test_lite_profile_version_and_ranges);
     RUN_TEST(test_random_commands_never_jump_joints_or_break_limits);
     RUN_TEST(test_stroke_follows_every_command_change);
+    RUN_TEST(test_contacts_are_the_gaits);
     return UNITY_END();
 }

@@ -332,13 +332,30 @@ static void transition_step(xgo_motion_t *m, const xgo_body_pose_t *home, xgo_ve
 
 /* ------------------------------------------------------------ whole unit */
 
+/* The gait's contacts (each 0 or 1) as the bits of m->contact. */
+XGO_ALWAYS_INLINE uint8_t gait_contact_bits(const xgo_gait_t *g)
+{
+#if XGO_CORE_DIV64_NATIVE && defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+    /* One load and one multiply on a 64-bit host: the four bytes as a word
+     * w = c0 + c1 2^8 + c2 2^16 + c3 2^24, and w * (2^21 + 2^14 + 2^7 + 1)
+     * has ci at bit 21 + i; the other products land on bits 0, 7, 8, 14..16
+     * and 29..31 (or beyond 32), no two on one bit: no carries. */
+    uint32_t w;
+    memcpy(&w, g->contact, sizeof w);
+    return (uint8_t)((w * 0x00204081u) >> 21 & 0x0Fu);
+#else
+    return (uint8_t)(g->contact[0] | (g->contact[1] << 1) | (g->contact[2] << 2) | (g->contact[3] << 3));
+#endif
+}
+
+typedef char xgo_motion_contact_check_[sizeof((xgo_gait_t *)0)->contact == 4 ? 1 : -1];
+
 /* A gait tick under cmd and its contacts (its feet in m->gait.foot_um);
  * returns its yaw rate. */
 static int32_t gait_step(xgo_motion_t *m, const xgo_gait_command_t *cmd)
 {
     xgo_gait_tick(&m->gait, cmd);
-    m->contact = (uint8_t)(m->gait.contact[0] | (m->gait.contact[1] << 1) | (m->gait.contact[2] << 2) |
-                           (m->gait.contact[3] << 3));
+    m->contact = gait_contact_bits(&m->gait);
     return m->gait.vyaw_mdeg_s;
 }
 
