@@ -917,6 +917,119 @@ static void test_body_to_machine_legs_is_the_full_one(void)
     }
 }
 
+/* The body IK as its contract states it, for the comparison below: each
+ * foot's difference from the pose exact (64 bits); within +-(2^22 - 1) um
+ * on every axis the rotation cut to Q18 (rounded) and the exact sum rounded
+ * once to um, else the Q30 entries on the differences saturated to int32,
+ * rounded, then saturated. */
+static int32_t ref_sat32(int64_t v)
+{
+    return v > INT32_MAX ? INT32_MAX : (v < INT32_MIN ? INT32_MIN : (int32_t)v);
+}
+
+static void ref_body_ik_rotated(const xgo_profile_t *p, const xgo_body_pose_t *pose,
+                                const xgo_q30_t rot[XGO_ROT_COUNT], const xgo_vec3_t feet[XGO_LEG_COUNT],
+                                xgo_vec3_t out[XGO_LEG_COUNT])
+{
+    const int64_t lim = (1 << 22) - 1;
+    int64_t q[XGO_ROT_COUNT];
+    int leg, i;
+    for (i = 0; i < XGO_ROT_COUNT; ++i) {
+        q[i] = ((int64_t)rot[i] + 2048) >> 12;
+    }
+    for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
+        const int32_t ox = side_x(leg) * p->hip_x_um, oy = side_y(leg) * (p->hip_y_um + p->abad_offset_um);
+        const int64_t d[3] = {(int64_t)feet[leg].x - pose->x_um, (int64_t)feet[leg].y - pose->y_um,
+                              (int64_t)feet[leg].z - pose->z_um};
+        int64_t s[3];
+        int axis;
+        if (d[0] >= -lim && d[0] <= lim && d[1] >= -lim && d[1] <= lim && d[2] >= -lim && d[2] <= lim) {
+            for (axis = 0; axis < 3; ++axis) {
+                s[axis] = (q[axis] * d[0] + q[3 + axis] * d[1] + q[6 + axis] * d[2] + (1 << 17)) >> 18;
+            }
+        } else {
+            const int64_t x = ref_sat32(d[0]), y = ref_sat32(d[1]), z = ref_sat32(d[2]);
+            for (axis = 0; axis < 3; ++axis) {
+                s[axis] = ((int64_t)rot[axis] * x + (int64_t)rot[3 + axis] * y + (int64_t)rot[6 + axis] * z +
+                           ((int64_t)1 << 29)) >> 30;
+            }
+        }
+        out[leg].x = ref_sat32(s[0] - ox);
+        out[leg].y = ref_sat32(s[1] - oy);
+        out[leg].z = ref_sat32(-s[2]);
+    }
+}
+
+/* One coordinate of a foot, about at (near 0) c: mostly within 2 m of it
+ * (the 64-bit host's one-test path), else on the edges of that range and of
+ * the near one (+-2^21, +-(2^22 - 1), +-2^22 and their neighbours), between
+ * them, or any int32. */
+static int32_t body_foot_coord(uint64_t *seed, int32_t c)
+{
+    static const int64_t edges[] = {(1 << 21) - 1, 1 << 21, (1 << 21) + 1, (1 << 22) - 2, (1 << 22) - 1, 1 << 22};
+    const uint32_t kind = xgo_test_xorshift64(seed) % 16u;
+    int64_t d;
+    if (kind < 10u) {
+        d = (int64_t)(xgo_test_xorshift64(seed) % 400001u) - 200000;
+    } else if (kind < 13u) {
+        d = edges[xgo_test_xorshift64(seed) % 6u];
+        d = (xgo_test_xorshift64(seed) & 1u) ? -d : d;
+    } else if (kind < 15u) {
+        d = (int64_t)(xgo_test_xorshift64(seed) % (1u << 24)) - (1 << 23);
+    } else {
+        return (int32_t)xgo_test_xorshift64(seed);
+    }
+    return ref_sat32(c + d);
+}
+
+/* xgo_body_ik_rotated (a 64-bit host: one range test for the usual feet,
+ * the Q18 products on the differences with R(1, 0)'s dropped when it is
+ * 0) against the contract's plain form: random rotations with and without
+ * yaw, poses near and far, feet on every range's edges, both profiles'
+ * leg origins, the output in place of the input too. */
+static void test_body_ik_rotated_is_the_plain_one(void)
+{
+    xgo_profile_t other = *xgo_profile_mini();
+    uint64_t seed = 0xb0d1e5ULL;
+    long n;
+    other.hip_x_um = 93000;
+    other.hip_y_um = 41000;
+    other.abad_offset_um = 17500;
+    for (n = 0; n < 300000; ++n) {
+        const xgo_profile_t *p = (n & 1) ? &other : xgo_profile_mini();
+        xgo_body_pose_t pose;
+        xgo_q30_t rot[XGO_ROT_COUNT];
+        xgo_vec3_t feet[XGO_LEG_COUNT], out[XGO_LEG_COUNT], want[XGO_LEG_COUNT];
+        const int far_pose = (n & 30) == 0;
+        unsigned leg;
+        pose.roll_mdeg = (n & 8) ? 0 : (int32_t)(xgo_test_xorshift64(&seed) % 720001u) - 360000;
+        pose.pitch_mdeg = (int32_t)(xgo_test_xorshift64(&seed) % 720001u) - 360000;
+        pose.yaw_mdeg = (n & 6) ? 0 : (int32_t)(xgo_test_xorshift64(&seed) % 720001u) - 360000;
+        pose.x_um = (int32_t)(xgo_test_xorshift64(&seed) % 60001u) - 30000;
+        pose.y_um = (int32_t)(xgo_test_xorshift64(&seed) % 60001u) - 30000;
+        if (far_pose) { /* differences beyond int32 */
+            pose.x_um = (int32_t)xgo_test_xorshift64(&seed);
+            pose.y_um = (int32_t)xgo_test_xorshift64(&seed);
+        }
+        pose.z_um = (int32_t)(xgo_test_xorshift64(&seed) % 200001u) + 20000;
+        xgo_body_rotation(&pose, rot);
+        for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
+            feet[leg].x = body_foot_coord(&seed, pose.x_um);
+            feet[leg].y = body_foot_coord(&seed, pose.y_um);
+            feet[leg].z = body_foot_coord(&seed, pose.z_um);
+        }
+        ref_body_ik_rotated(p, &pose, rot, feet, want);
+        xgo_body_ik_rotated(p, &pose, rot, feet, out);
+        for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
+            TEST_ASSERT_EQUAL_INT32(want[leg].x, out[leg].x);
+            TEST_ASSERT_EQUAL_INT32(want[leg].y, out[leg].y);
+            TEST_ASSERT_EQUAL_INT32(want[leg].z, out[leg].z);
+        }
+        xgo_body_ik_rotated(p, &pose, rot, feet, feet); /* in place */
+        TEST_ASSERT_EQUAL_MEMORY(want, feet, sizeof want);
+    }
+}
+
 /* ------------------------------------------------------------ byte codes */
 
 /* The vendor library's encoder, as Python evaluates it in double. */
@@ -1177,6 +1290,7 @@ int main(void)
     RUN_TEST(test_body_rotation_without_yaw_is_the_general_one);
     RUN_TEST(test_body_rotation_next_is_the_rotation);
     RUN_TEST(test_body_to_machine_legs_is_the_full_one);
+    RUN_TEST(test_body_ik_rotated_is_the_plain_one);
     RUN_TEST(test_byte_codes_match_the_vendor_library);
     RUN_TEST(test_twelve_register_blocks);
     RUN_TEST(test_ik_same_bits_as_before);

@@ -981,6 +981,7 @@ static void rot_q18(const xgo_q30_t rot[XGO_ROT_COUNT], int32_t q[XGO_ROT_COUNT]
 
 #undef ROT_Q18
 
+#if !XGO_CORE_DIV64_NATIVE
 /* One foot of the body IK beyond the near range (4 m): the difference
  * saturated to int32 so the products stay within 2^61, Q30 entries. Out
  * of line: it would crowd the near path's registers. */
@@ -993,12 +994,73 @@ XGO_OWN_FRAME static void body_foot_far(const xgo_q30_t rot[XGO_ROT_COUNT], cons
     out->y = sat_i32(dot3_q30_far(rot[1], rot[4], rot[7], x, y, z) - oy);
     out->z = sat_i32(-dot3_q30_far(rot[2], rot[5], rot[8], x, y, z));
 }
+#else
+/* body_foot_far from the 64-bit differences (exact: f - p of two int32),
+ * so that the near path keeps nothing else of the foot live. */
+XGO_OWN_FRAME static void body_diff_far(const xgo_q30_t rot[XGO_ROT_COUNT], int64_t dx, int64_t dy, int64_t dz,
+                                        int32_t ox, int32_t oy, xgo_vec3_t *out)
+{
+    const int32_t x = sat_i32(dx), y = sat_i32(dy), z = sat_i32(dz);
+    out->x = sat_i32(dot3_q30_far(rot[0], rot[3], rot[6], x, y, z) - ox);
+    out->y = sat_i32(dot3_q30_far(rot[1], rot[4], rot[7], x, y, z) - oy);
+    out->z = sat_i32(-dot3_q30_far(rot[2], rot[5], rot[8], x, y, z));
+}
+
+/* |v| <= NEAR_LIMIT_UM (near_diff's range) */
+XGO_ALWAYS_INLINE int near64(int64_t v)
+{
+    return (uint64_t)(v + NEAR_LIMIT_UM) <= 2u * NEAR_LIMIT_UM;
+}
+
+/* The body IK's feet on a 64-bit host: the differences in 64 bits, then
+ * whether each is within 2 m, [-2^21, 2^21), in one test (the or of the
+ * offset differences has no bit from 2^22 up only if each has none; the
+ * usual case), else near_diff's exact range, else the far form: the same
+ * answer and values as the MCU's loop in xgo_body_ik_rotated (tick:
+ * 7 instructions a foot for the test instead of 19, no copies of the feet
+ * kept for the far path). q3 is q[3] apart: R(1, 0) is 0 without yaw
+ * (rotation_without_yaw), and the usual call passes a literal 0, which
+ * drops its four products. */
+XGO_ALWAYS_INLINE void body_ik_host(const xgo_body_pose_t *pose, const xgo_q30_t rot[XGO_ROT_COUNT],
+                                    const int32_t q[XGO_ROT_COUNT], int32_t q3, int32_t ax, int32_t ay,
+                                    const xgo_vec3_t feet_machine_um[XGO_LEG_COUNT],
+                                    xgo_vec3_t feet_leg_um[XGO_LEG_COUNT])
+{
+    const int64_t px = pose->x_um, py = pose->y_um, pz = pose->z_um;
+    int leg;
+    for (leg = 0; leg < XGO_LEG_COUNT; ++leg) {
+        const xgo_vec3_t *f = &feet_machine_um[leg];
+        xgo_vec3_t *out = &feet_leg_um[leg];
+        const int64_t x = f->x - px, y = f->y - py, z = f->z - pz;
+        int32_t ox, oy;
+        leg_origin_of(leg, ax, ay, &ox, &oy);
+        if ((((x + (1 << 21)) | (y + (1 << 21)) | (z + (1 << 21))) & ~(int64_t)((1 << 22) - 1)) == 0 ||
+            (near64(x) && near64(y) && near64(z))) {
+            out->x = (int32_t)((q[0] * x + (int64_t)q3 * y + q[6] * z + (1 << 17)) >> 18) - ox;
+            out->y = (int32_t)((q[1] * x + (int64_t)q[4] * y + q[7] * z + (1 << 17)) >> 18) - oy;
+            out->z = -(int32_t)((q[2] * x + (int64_t)q[5] * y + q[8] * z + (1 << 17)) >> 18);
+        } else {
+            body_diff_far(rot, x, y, z, ox, oy, out);
+        }
+    }
+}
+#endif
 
 void xgo_body_ik_rotated(const xgo_profile_t *p, const xgo_body_pose_t *pose,
                          const xgo_q30_t rot[XGO_ROT_COUNT],
                          const xgo_vec3_t feet_machine_um[XGO_LEG_COUNT],
                          xgo_vec3_t feet_leg_um[XGO_LEG_COUNT])
 {
+#if XGO_CORE_DIV64_NATIVE
+    int32_t q[XGO_ROT_COUNT];
+    rot_q18(rot, q);
+    if (q[3] == 0) {
+        body_ik_host(pose, rot, q, 0, p->hip_x_um, p->hip_y_um + p->abad_offset_um, feet_machine_um, feet_leg_um);
+    } else {
+        body_ik_host(pose, rot, q, q[3], p->hip_x_um, p->hip_y_um + p->abad_offset_um, feet_machine_um,
+                     feet_leg_um);
+    }
+#else
     int32_t q[XGO_ROT_COUNT];
     /* read once: the stores below could alias them for the compiler */
     const int32_t px = pose->x_um, py = pose->y_um, pz = pose->z_um;
@@ -1022,6 +1084,7 @@ void xgo_body_ik_rotated(const xgo_profile_t *p, const xgo_body_pose_t *pose,
             body_foot_far(rot, pose, f, ox, oy, out);
         }
     }
+#endif
 }
 
 void xgo_leg_to_body(const xgo_profile_t *p, xgo_leg_t leg, const xgo_vec3_t *foot_leg_um,
