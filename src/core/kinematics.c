@@ -784,19 +784,27 @@ static void sincos_mdeg(int32_t mdeg, xgo_q30_t *s, xgo_q30_t *c)
 /* R without yaw from the roll's and pitch's sines and cosines: cos yaw = 1
  * and sin yaw = 0 exactly, so each product of the general formula by them
  * is the other factor and each sum has one term (mul30 and dot30 both
- * round exactly: the same entries), 4 products instead of 14. */
-static void rotation_without_yaw(xgo_q30_t sr, xgo_q30_t cr, xgo_q30_t sp, xgo_q30_t cp,
-                                 xgo_q30_t rot[XGO_ROT_COUNT])
+ * round exactly: the same entries), 4 products instead of 14. The rows 0
+ * and 2 hold the pitch; row 1, (0, cos roll, -sin roll), does not, and
+ * xgo_body_rotation_next leaves it as it is when only the pitch changed. */
+static void rotation_pitch_rows(xgo_q30_t sr, xgo_q30_t cr, xgo_q30_t sp, xgo_q30_t cp,
+                                xgo_q30_t rot[XGO_ROT_COUNT])
 {
     rot[XGO_ROT(0, 0)] = cp;
     rot[XGO_ROT(0, 1)] = mul30(sp, sr);
     rot[XGO_ROT(0, 2)] = mul30(sp, cr);
-    rot[XGO_ROT(1, 0)] = 0;
-    rot[XGO_ROT(1, 1)] = cr;
-    rot[XGO_ROT(1, 2)] = -sr;
     rot[XGO_ROT(2, 0)] = -sp;
     rot[XGO_ROT(2, 1)] = mul30(cp, sr);
     rot[XGO_ROT(2, 2)] = mul30(cp, cr);
+}
+
+static void rotation_without_yaw(xgo_q30_t sr, xgo_q30_t cr, xgo_q30_t sp, xgo_q30_t cp,
+                                 xgo_q30_t rot[XGO_ROT_COUNT])
+{
+    rotation_pitch_rows(sr, cr, sp, cp, rot);
+    rot[XGO_ROT(1, 0)] = 0;
+    rot[XGO_ROT(1, 1)] = cr;
+    rot[XGO_ROT(1, 2)] = -sr;
 }
 
 void xgo_body_rotation(const xgo_body_pose_t *pose, xgo_q30_t rot[XGO_ROT_COUNT])
@@ -828,11 +836,12 @@ void xgo_body_rotation_next(const xgo_body_pose_t *last, const xgo_body_pose_t *
 {
     if (pose->yaw_mdeg == 0 && last->yaw_mdeg == 0 && pose->roll_mdeg == last->roll_mdeg) {
         /* last's rotation without yaw holds cos roll at (1, 1) and -sin roll
-         * at (1, 2) as they were: only the pitch's sine is new */
+         * at (1, 2) as they were: only the pitch's sine is new, and the
+         * middle row (0, cos roll, -sin roll) stays as it is */
         const xgo_q30_t cr = rot[XGO_ROT(1, 1)], sr = -rot[XGO_ROT(1, 2)];
         xgo_q30_t sp, cp;
         sincos_mdeg(pose->pitch_mdeg, &sp, &cp);
-        rotation_without_yaw(sr, cr, sp, cp, rot);
+        rotation_pitch_rows(sr, cr, sp, cp, rot);
         return;
     }
     xgo_body_rotation(pose, rot);
