@@ -912,22 +912,18 @@ static int32_t dot3_q18_cold(int32_t q0, int32_t q1, int32_t q2, int32_t v0, int
 
 #define NEAR_LIMIT_UM ((1 << 22) - 1)
 
+#if !XGO_CORE_DIV64_NATIVE /* a 64-bit host: body_ik_host's tests below */
 /* Whether the exact a - b is within +-NEAR_LIMIT_UM, and if so a - b in
- * *d. On a 32-bit core all in 32 bits: the difference modulo 2^32 is exact
- * unless a and b differ in sign and it differs from a (an overflow, never
- * near); no 64-bit subtractions and compares, and a value the compiler
- * knows is 32 bits (from a 64-bit difference GCC made the Cortex-M3's
- * products below 64 x 64 bits). The same answer either way. */
+ * *d, all in 32 bits: the difference modulo 2^32 is exact unless a and b
+ * differ in sign and it differs from a (an overflow, never near); no
+ * 64-bit subtractions and compares, and a value the compiler knows is 32
+ * bits (from a 64-bit difference GCC made the Cortex-M3's products below
+ * 64 x 64 bits). */
 XGO_ALWAYS_INLINE int near_diff(int32_t a, int32_t b, um_diff_t *d)
 {
-#if XGO_CORE_DIV64_NATIVE /* a 64-bit host: the plain difference is cheaper */
-    *d = (int64_t)a - b;
-    return *d <= NEAR_LIMIT_UM && *d >= -NEAR_LIMIT_UM;
-#else
     const uint32_t ua = (uint32_t)a, ub = (uint32_t)b, r = ua - ub;
     *d = r <= (uint32_t)INT32_MAX ? (int32_t)r : -(int32_t)~r - 1; /* two's complement view */
     return ((ua ^ ub) & (ua ^ r)) < 0x80000000u && r + (uint32_t)NEAR_LIMIT_UM <= 2u * (uint32_t)NEAR_LIMIT_UM;
-#endif
 }
 
 /* v within [-2^21, 2^21) (2 m): the difference of two such values is
@@ -938,26 +934,22 @@ XGO_ALWAYS_INLINE int small_um(int32_t v)
 }
 
 /* near_diff for the three coordinates of foot f and the pose's (px, py,
- * pz). On a 32-bit core first the usual case, both points within 2 m
- * (pose_small: the pose's), where the differences need no check (tick:
- * M0 -42, M3 -92); a 64-bit host checks its plain differences as fast.
+ * pz): first the usual case, both points within 2 m (pose_small: the
+ * pose's), where the differences need no check (tick: M0 -42, M3 -92).
  * The same answer and differences either way. */
 XGO_ALWAYS_INLINE int near_foot(const xgo_vec3_t *f, int32_t px, int32_t py, int32_t pz, int pose_small,
                                 um_diff_t *x, um_diff_t *y, um_diff_t *z)
 {
-#if !XGO_CORE_DIV64_NATIVE
     if (pose_small & small_um(f->x) & small_um(f->y) & small_um(f->z)) {
         *x = f->x - px;
         *y = f->y - py;
         *z = f->z - pz;
         return 1;
     }
-#else
-    (void)pose_small;
-#endif
     /* (& rather than &&: all three differences are needed anyway) */
     return near_diff(f->x, px, x) & near_diff(f->y, py, y) & near_diff(f->z, pz, z);
 }
+#endif
 
 static int near3(int32_t a, int32_t b, int32_t c)
 {
