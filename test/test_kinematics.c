@@ -1273,6 +1273,40 @@ static void test_twelve_register_blocks(void)
     TEST_ASSERT_EQUAL_HEX8_ARRAY(body, body2, 6);
 }
 
+/* ------------------------------------------------------------ the Mini's kept limit arcs */
+
+/* On a 64-bit host the leg IK keeps the arcs of the Mini's knee and hip
+ * limits instead of working them out for each projection; the narrow build
+ * (test_kinematics_narrow) works them out. Both must give these bits, those
+ * of the code before the arcs were kept: targets of every kind, most of
+ * them projected, every leg. */
+#define MINI_PROJECTION_DIGEST 0x0f424443082ecc6dULL
+
+static void test_projection_with_kept_arcs_same_bits(void)
+{
+    const xgo_profile_t *p = xgo_profile_mini();
+    uint64_t seed = 0xa4c5f00dULL, digest = 0;
+    long n, projected = 0;
+    for (n = 0; n < 200000; ++n) {
+        const xgo_leg_t leg = (xgo_leg_t)(n & 3);
+        xgo_vec3_t foot;
+        int32_t q[XGO_JOINT_COUNT];
+        int r, j;
+        foot.x = (int32_t)(xgo_test_xorshift64(&seed) % 400001u) - 200000;
+        foot.y = (int32_t)(xgo_test_xorshift64(&seed) % 240001u) - 120000;
+        foot.z = (int32_t)(xgo_test_xorshift64(&seed) % 300001u) - 80000;
+        r = xgo_leg_ik(p, leg, &foot, q);
+        projected += r != XGO_IK_REACHED;
+        digest = fold_ik(digest, (uint32_t)r);
+        for (j = 0; j < XGO_JOINT_COUNT; ++j) {
+            digest = fold_ik(digest, (uint32_t)q[j]);
+        }
+    }
+    printf("projection digest 0x%016llx, %ld of 200000 projected\n", (unsigned long long)digest, projected);
+    TEST_ASSERT_TRUE(projected > 100000);
+    TEST_ASSERT_TRUE(digest == MINI_PROJECTION_DIGEST);
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -1295,5 +1329,6 @@ int main(void)
     RUN_TEST(test_twelve_register_blocks);
     RUN_TEST(test_ik_same_bits_as_before);
     RUN_TEST(test_ik_far_limit_edges);
+    RUN_TEST(test_projection_with_kept_arcs_same_bits);
     return UNITY_END();
 }

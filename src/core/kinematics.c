@@ -178,6 +178,21 @@ XGO_ALWAYS_INLINE void complex_mul(int32_t a, int32_t b, int32_t c, int32_t d, i
 
 /* ------------------------------------------------------------ planar IK */
 
+/* planar_init's constants for the Mini's links (every built-in profile's),
+ * as constant expressions of what planar_init works out: 2 l1 l2 is below
+ * 2^42 and at least 2^41 (checked below), so it is cut by 12 bits; the knee
+ * offset's binary angle as xgo_mdeg_to_bam gives it (a positive angle). */
+#define MINI_L1 ((int64_t)XGO_MINI_THIGH_UM * Q4_ONE)
+#define MINI_L2 ((int64_t)XGO_MINI_SHANK_UM * Q4_ONE)
+#define MINI_TWO_L1L2 (2 * MINI_L1 * MINI_L2)
+#define MINI_D_SHIFT 12
+#define MINI_DN (MINI_TWO_L1L2 >> MINI_D_SHIFT)
+#define MINI_KNEE_OFF                                                                        \
+    ((uint32_t)XGO_MINI_KNEE_OFFSET_MDEG * 11930u +                                          \
+     (uint32_t)(((int64_t)XGO_MINI_KNEE_OFFSET_MDEG * 1995919024 + ((int64_t)1 << 31)) >> 32))
+typedef char xgo_mini_cut_is_12_bits[(MINI_TWO_L1L2 >> 41) == 1 ? 1 : -1];
+typedef char xgo_mini_knee_offset_positive[XGO_MINI_KNEE_OFFSET_MDEG >= 0 ? 1 : -1];
+
 typedef struct planar_s {
     int32_t l1, l2;     /* q4 */
     int64_t sum_sq;     /* l1^2 + l2^2 */
@@ -243,9 +258,49 @@ XGO_OWN_FRAME static void planar_arc(planar_t *pl, int side)
     pl->knee_h[side] = (int32_t)round_shift(mul_cold(pl->l1, cg), 30);
 }
 
+#if XGO_CORE_DIV64_NATIVE
+/* On a 64-bit host the arcs of the Mini's knee and hip limits (the Mini's
+ * and the Mini2's profiles: profile.c) with its links are kept, as
+ * planar_arcs works them out: a projection (a leg in about one tick in
+ * 25) then skips about 760 instructions of sines, a root and an atan2.
+ * test_kinematics checks them against planar_arcs through projections.
+ * Not on an MCU: the table and the tests would cost flash. */
+#define MINI_KNEE_LO_MDEG (-73000)
+#define MINI_KNEE_HI_MDEG 57000
+#define MINI_HIP_LO_MDEG (-66000)
+#define MINI_HIP_HI_MDEG 93000
+
+static int mini_arcs(planar_t *pl, const xgo_range_t *knee, const xgo_range_t *hip)
+{
+    if (pl->l1 != MINI_L1 || pl->l2 != MINI_L2 || pl->knee_off != MINI_KNEE_OFF || knee->lo != MINI_KNEE_LO_MDEG ||
+        knee->hi != MINI_KNEE_HI_MDEG || hip->lo != MINI_HIP_LO_MDEG || hip->hi != MINI_HIP_HI_MDEG) {
+        return 0;
+    }
+    pl->g_lo = -861928354;
+    pl->g_hi = 689032059;
+    pl->t_lo = -787410671;
+    pl->t_hi = 1109533218;
+    pl->hip_r[0] = 421089;
+    pl->hip_r[1] = 2090023;
+    pl->hip_a[0] = 2883634221u;
+    pl->hip_a[1] = 4079218564u;
+    pl->knee_x[0] = 875542;
+    pl->knee_x[1] = -957087;
+    pl->knee_h[0] = 389816;
+    pl->knee_h[1] = -50159;
+    pl->arcs_ready = 1;
+    return 1;
+}
+#endif
+
 static void planar_arcs(planar_t *pl)
 {
     const xgo_range_t *knee = &pl->p->joint_mdeg[XGO_JOINT_KNEE], *hip = &pl->p->joint_mdeg[XGO_JOINT_HIP];
+#if XGO_CORE_DIV64_NATIVE
+    if (mini_arcs(pl, knee, hip)) {
+        return;
+    }
+#endif
     pl->g_lo = xgo_bam_signed(xgo_mdeg_to_bam(knee->lo) + pl->knee_off);
     pl->g_hi = xgo_bam_signed(xgo_mdeg_to_bam(knee->hi) + pl->knee_off);
     pl->t_lo = limit_bam(hip->lo);
@@ -556,21 +611,6 @@ XGO_OWN_FRAME static int upper_may_win(const planar_t *pl, int side, const leg_s
     *miss2_below = miss2(pl->p, side, below, x_um, y_um, z);
     return off <= 0 || square_wide(off) <= *miss2_below;
 }
-
-/* planar_init's constants for the Mini's links (every built-in profile's),
- * as constant expressions of what planar_init works out: 2 l1 l2 is below
- * 2^42 and at least 2^41 (checked below), so it is cut by 12 bits; the knee
- * offset's binary angle as xgo_mdeg_to_bam gives it (a positive angle). */
-#define MINI_L1 ((int64_t)XGO_MINI_THIGH_UM * Q4_ONE)
-#define MINI_L2 ((int64_t)XGO_MINI_SHANK_UM * Q4_ONE)
-#define MINI_TWO_L1L2 (2 * MINI_L1 * MINI_L2)
-#define MINI_D_SHIFT 12
-#define MINI_DN (MINI_TWO_L1L2 >> MINI_D_SHIFT)
-#define MINI_KNEE_OFF                                                                        \
-    ((uint32_t)XGO_MINI_KNEE_OFFSET_MDEG * 11930u +                                          \
-     (uint32_t)(((int64_t)XGO_MINI_KNEE_OFFSET_MDEG * 1995919024 + ((int64_t)1 << 31)) >> 32))
-typedef char xgo_mini_cut_is_12_bits[(MINI_TWO_L1L2 >> 41) == 1 ? 1 : -1];
-typedef char xgo_mini_knee_offset_positive[XGO_MINI_KNEE_OFFSET_MDEG >= 0 ? 1 : -1];
 
 static void planar_init(planar_t *pl, const xgo_profile_t *p)
 {
