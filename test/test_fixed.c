@@ -900,6 +900,22 @@ static void test_inline_bodies_are_the_functions(void)
     }
 }
 
+/* The sine alone from the inline body (no cosine asked: the gait's swing
+ * and a periodic motion's sine on a 64-bit host) is xgo_sin's: random
+ * angles and every angle around the four quadrant edges. */
+static void test_inline_sine_alone_is_xgo_sin(void)
+{
+    uint64_t state = 0x51DE5A11ull;
+    uint32_t k;
+    for (k = 0; k < 2000000u; ++k) {
+        const xgo_bam_t a = k < 400000u ? (k / 100000u << 30) + (k % 100000u) - 50000u
+                                        : (xgo_bam_t)xgo_test_xorshift64(&state);
+        xgo_q30_t si;
+        xgo_sincos_inline(a, &si, 0);
+        TEST_ASSERT_EQUAL_INT32(xgo_sin(a), si);
+    }
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -923,6 +939,7 @@ int main(void)
     RUN_TEST(test_atan2_64_same_bits_everywhere);
     RUN_TEST(test_sqrt64_near_same_bits_as_before);
     RUN_TEST(test_inline_bodies_are_the_functions);
+    RUN_TEST(test_inline_sine_alone_is_xgo_sin);
     RUN_TEST(test_sincos_same_bits_as_before);
     return UNITY_END();
 }

@@ -43,6 +43,27 @@
 #include <string.h> /* memcmp */
 
 #include "fixed.h"
+/* On a 64-bit host the swing's sine inline (fixed.h's bodies: the same
+ * code as xgo_sincos, so the same value), without the cosine it does not
+ * use; an MCU calls xgo_sincos (flash). */
+#if XGO_CORE_DIV64_NATIVE
+#define XGO_FIXED_BODIES
+#define XGO_FIXED_INLINE
+#include "fixed.h"
+#endif
+
+/* sin a: one a tick (the swing's height profile). */
+XGO_ALWAYS_INLINE xgo_q30_t swing_sin(xgo_bam_t a)
+{
+    xgo_q30_t s;
+#if XGO_CORE_DIV64_NATIVE
+    xgo_sincos_inline(a, &s, 0);
+#else
+    xgo_q30_t c;
+    xgo_sincos(a, &s, &c);
+#endif
+    return s;
+}
 
 /* ------------------------------------------------------------ tables */
 
@@ -826,7 +847,7 @@ static void swing_weights(const gait_table_t *t, uint32_t theta, gait_swing_weig
     const int32_t h = mul_q26_unit(w3, 10 * one - 15 * w + 6 * w2);
     const int32_t a = w + mul_q26_unit(w3, -6 * one + 8 * w - 3 * w2);
     const int32_t b = mul_q26_unit(w3, -4 * one + 7 * w - 3 * w2);
-    xgo_q30_t s, co;
+    xgo_q30_t s;
     wt->theta = theta;
     wt->h = h;
     wt->ca = a;
@@ -839,7 +860,7 @@ static void swing_weights(const gait_table_t *t, uint32_t theta, gait_swing_weig
         wt->ca = a - mul_q(a, 2 * dw, 26u) - dh + (u < dw ? u : dw);
         wt->cb = b - mul_q(b, 2 * dw, 26u) - dh + (u > one - dw ? u - (one - dw) : 0);
     }
-    xgo_sincos(psi >> 1, &s, &co); /* angle pi * psi */
+    s = swing_sin(psi >> 1); /* angle pi * psi */
     wt->s2 = square_q30(s);
     wt->follow = land_follow(u);
 }
