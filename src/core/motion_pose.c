@@ -9,6 +9,14 @@
 #include "fixed.h"
 #include "motion_internal.h"
 #include "wide.h" /* XGO_CORE_DIV64_NATIVE: a 64-bit host (command_decoding) */
+/* On a 64-bit host a periodic motion's sine inline (fixed.h's bodies: the
+ * same code as xgo_sin, so the same value; one a tick); an MCU calls
+ * xgo_sin (flash). */
+#if XGO_CORE_DIV64_NATIVE
+#define XGO_FIXED_BODIES
+#define XGO_FIXED_INLINE
+#include "fixed.h"
+#endif
 
 #define PERIODIC_AXES 6 /* roll, pitch, yaw, x, y, z */
 
@@ -52,7 +60,13 @@ static uint32_t periodic_step(uint8_t period_byte)
  * is inline on an M0, xgo_mul_q's by a variable q two library calls. */
 static int32_t wave(xgo_bam_t phase, int32_t amplitude)
 {
-    const int64_t p = xgo_mul_wide(amplitude, xgo_sin(phase));
+#if XGO_CORE_DIV64_NATIVE
+    xgo_q30_t sin_phase;
+    xgo_sincos_inline(phase, &sin_phase, 0);
+#else
+    const xgo_q30_t sin_phase = xgo_sin(phase);
+#endif
+    const int64_t p = xgo_mul_wide(amplitude, sin_phase);
     return (int32_t)((p + ((int64_t)1 << 29)) >> 30);
 }
 
