@@ -310,8 +310,16 @@ static void planar_arcs(planar_t *pl)
     pl->arcs_ready = 1;
 }
 
+/* The candidates: inline into the projection on a 64-bit host (the stack
+ * is no budget there), each with its own frame on an MCU. */
+#if XGO_CORE_DIV64_NATIVE
+#define CANDIDATE_FN XGO_ALWAYS_INLINE
+#else
+#define CANDIDATE_FN XGO_OWN_FRAME static
+#endif
+
 /* The candidate on the circle about the hip where g is at a limit. */
-XGO_OWN_FRAME static void hip_candidate(const planar_t *pl, int side, int32_t x, int32_t h, xgo_bam_t target,
+CANDIDATE_FN void hip_candidate(const planar_t *pl, int side, int32_t x, int32_t h, xgo_bam_t target,
                                         candidate_t *best)
 {
     const int32_t r = pl->hip_r[side];
@@ -324,7 +332,7 @@ XGO_OWN_FRAME static void hip_candidate(const planar_t *pl, int side, int32_t x,
 }
 
 /* The candidate on the circle about the knee where t2 is at a limit. */
-XGO_OWN_FRAME static void knee_candidate(const planar_t *pl, int side, int32_t x, int32_t h, candidate_t *best)
+CANDIDATE_FN void knee_candidate(const planar_t *pl, int side, int32_t x, int32_t h, candidate_t *best)
 {
     const int32_t tl = side ? pl->t_hi : pl->t_lo;
     const int32_t kx = pl->knee_x[side], kh = pl->knee_h[side];
