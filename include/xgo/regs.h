@@ -17,6 +17,8 @@
  *     arithmetic), a shorter read the one-byte encoding;
  *   - 0x65 IMU block: 24 bytes, acceleration and angular rate (int16 LE) and
  *     the three angles (float32 LE degrees), xgo_regs_set_inertial();
+ *     a board forms 0x62..0x68 from its IMU's outputs when they are read
+ *     (board.c), the register file alone from what was set;
  *   - 0x66..0x68 roll/pitch/yaw as int16 big-endian, 0.01 degree;
  *   - 0xC4..0xFF diagnostic counters, uint32 little-endian.
  * Two write views: 0x3F (turn to heading) takes two bytes, an int16

@@ -47,10 +47,11 @@
  * Pointers must not be NULL (a caller bug: XGO_ASSERT, src/core/check.h).
  *
  * Portable: C99, integer arithmetic only (fixed.h), no OS calls, no heap,
- * no globals. Cost (x86-64 -O2): ~1,320 instructions per tick trotting
- * steadily, ~2,200 while the velocity changes, ~86 standing; one xgo_sincos
- * per swing phase, about 80 32x32->64 products; 64-bit division only in
- * rare transients (docs/gait.md).
+ * no globals. Cost (x86-64, the host build at -O3 with -flto, bench_board):
+ * about 740 instructions a tick in bench_board's trot (a 64-bit host keeps a
+ * steady tick's front stages and each swing's end tangents across ticks);
+ * one sine per swing phase; 64-bit division only in rare transients
+ * (docs/gait.md).
  */
 #ifndef XGO_GAIT_H
 #define XGO_GAIT_H

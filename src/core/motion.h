@@ -58,10 +58,11 @@ void xgo_motion_init_registers(const xgo_motion_t *m, xgo_regs_t *r);
 /* One control tick: consume host writes in regs, move, publish state to regs. */
 void xgo_motion_tick(xgo_motion_t *m, xgo_regs_t *regs);
 
-/* Write the board's state into the registers (mode, battery, action,
- * attitude); xgo_motion_tick ends with it, the board calls it at init too.
- * The joints (0x50..0x5B) are not among them: a read forms them from the
- * servos' angles (board.c, read_joints), which only a tick moves. */
+/* Write the board's state into the registers (mode, battery,
+ * action, perform, turn to); xgo_motion_tick ends with it, the board calls
+ * it at init too. The joints (0x50..0x5B) and the IMU's registers
+ * (0x62..0x68) are not among them: a read forms them from the servos'
+ * angles and the IMU's outputs (board.c), which only a tick changes. */
 void xgo_motion_publish(const xgo_motion_t *m, xgo_regs_t *r);
 
 /* Where the feet are, body frame (z up): the FK of the joints as they are
